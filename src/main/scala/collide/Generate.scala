@@ -224,36 +224,38 @@ object Generate {
         throw new IllegalArgumentException(s"it does not fit its device, ${cfg.device.name} (${cfg.device.part}): " +
           over.mkString("; ") + ". Name a larger one (--device), make it smaller, or pass --allow-overfit for a study")
     }
-    fits(AfuResources.of(cfg, None))
+    fits(AfuResources.of(cfg, None)) // M20K: refused before the elaboration, which takes seconds
+    val tmp = Files.createTempDirectory("collide-gen").toFile
+    def rm(f: File): Unit = { Option(f.listFiles()).foreach(_.foreach(rm)); f.delete() }
     val written = scala.collection.mutable.ArrayBuffer[File]()
-    var resources = AfuResources.of(cfg, None)
-    if (verilog) {
-      val tmp = Files.createTempDirectory("collide-gen").toFile
-      val args = Array("--target-dir", tmp.getPath) ++ (if (split) Array("--split-verilog") else Array[String]())
-      val (_, dsp) = AfuResources.counting(circt.stage.ChiselStage.emitSystemVerilogFile(new Afu(cfg), args, firtoolOpts))
-      resources = AfuResources.of(cfg, Some(dsp))
-      fits(resources)
+    val resources = try {
+      val dsp = Option.when(verilog) {
+        val args = Array("--target-dir", tmp.getPath) ++ (if (split) Array("--split-verilog") else Array[String]())
+        AfuResources.counting(circt.stage.ChiselStage.emitSystemVerilogFile(new Afu(cfg), args, firtoolOpts))._2
+      }
+      val r = AfuResources.of(cfg, dsp)
+      fits(r) // nothing is written for a configuration beyond its part, not even its folder
       dir.mkdirs()
-      val svs = tmp.listFiles().filter(f => f.getName.endsWith(".sv") || f.getName.endsWith(".f")).sortBy(_.getName)
-      val texts = svs.map(f => f.getName -> new String(Files.readAllBytes(f.toPath), "UTF-8")).toSeq
-      val rename = foreignModules(texts.map(_._2), cfg.id)
-      for ((name, text) <- texts) {
-        val target = new File(dir, uniquify(name, rename))
-        writeIfChanged(target, uniquify(text, rename))
-        written += target
+      if (verilog) {
+        val svs = tmp.listFiles().filter(f => f.getName.endsWith(".sv") || f.getName.endsWith(".f")).sortBy(_.getName)
+        val texts = svs.map(f => f.getName -> new String(Files.readAllBytes(f.toPath), "UTF-8")).toSeq
+        val rename = foreignModules(texts.map(_._2), cfg.id)
+        for ((name, text) <- texts) {
+          val target = new File(dir, uniquify(name, rename))
+          writeIfChanged(target, uniquify(text, rename))
+          written += target
+        }
+        // The simulation-only SCPU's Verilog, beside the AFU's (a black box to firtool, which drops
+        // inline black-box text when it writes one file).
+        if (cfg.scpuImpl == ScpuImpl.Model) {
+          val name = ScpuModelUnit.moduleName(cfg.id)
+          val target = new File(dir, s"$name.sv")
+          writeIfChanged(target, ScpuModelUnit.verilog(cfg.scpu, name))
+          written += target
+        }
       }
-      // The simulation-only SCPU's Verilog, beside the AFU's (a black box to firtool, which drops
-      // inline black-box text when it writes one file).
-      if (cfg.scpuImpl == ScpuImpl.Model) {
-        val name = ScpuModelUnit.moduleName(cfg.id)
-        val target = new File(dir, s"$name.sv")
-        writeIfChanged(target, ScpuModelUnit.verilog(cfg.scpu, name))
-        written += target
-      }
-      def rm(f: File): Unit = { Option(f.listFiles()).foreach(_.foreach(rm)); f.delete() }
-      rm(tmp)
-    }
-    dir.mkdirs()
+      r
+    } finally rm(tmp)
     val manifest = new File(dir, "manifest.json")
     writeIfChanged(manifest, ujson.write(AfuManifest.json(cfg, command, resources), indent = 2) + "\n")
     (written :+ manifest).toSeq ++ writeContract(dir.getAbsoluteFile.getParentFile)

@@ -14,6 +14,7 @@ object AfuManifest {
 
   def json(cfg: AfuConfig, command: String, resources: AfuResources): ujson.Obj = {
     val p = cfg.puc; val lay = cfg.layout; val s = cfg.scpu
+    val overfit = resources.overfit(cfg.device)
     ujson.Obj(
       "name" -> cfg.name, "id" -> cfg.id, "isPreset" -> cfg.isPreset,
       "topModule" -> s"Afu_${cfg.id}",
@@ -46,8 +47,8 @@ object AfuManifest {
           "broadPhaseM20k" -> p.broadPhaseM20k.toDouble)),
       "device" -> ujson.Obj("name" -> cfg.device.name, "part" -> cfg.device.part, "alms" -> cfg.device.alms,
         "m20k" -> cfg.device.m20k, "dspBlocks" -> cfg.device.dspBlocks, "source" -> cfg.device.source,
-        "utilization" -> resources.json(cfg.device), "fits" -> resources.overfit(cfg.device).isEmpty,
-        "overfit" -> ujson.Arr.from(resources.overfit(cfg.device).map(ujson.Str))),
+        "utilization" -> resources.json(cfg.device), "fits" -> overfit.isEmpty,
+        "overfit" -> ujson.Arr.from(overfit.map(ujson.Str))),
       "scpu" -> { val o = scpuJson(s); o("impl") = cfg.scpuImpl.name; o },
       "link" -> ujson.Obj(
         "format" -> AfuContract.linkName(cfg.scpu.linkFormat), "width" -> cfg.linkWidth,

@@ -121,7 +121,7 @@ class FpMul(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFami
   io.out.bits  := stage(nb + 4, RoundRaw.pack(p, si))
   io.out.valid := Pipeline.valid(io.in.valid, latency, io.en)
   // The device census (collide.afu.AfuResources): this multiplier's product tiles.
-  collide.afu.AfuResources.dspTiles(FpMul.chunks(f.sigBits, family.dspTile).size * FpMul.chunks(f.sigBits, family.dspTile).size)
+  collide.afu.AfuResources.dspTiles(FpMul.tiles(f.sigBits, family.dspTile))
 }
 
 object FpMul {
@@ -133,7 +133,10 @@ object FpMul {
     (0 until sigBits by tile).map(lo => (lo, math.min(tile, sigBits - lo)))
 
   /** Levels of the adder tree that sums the tiles' products. */
-  def treeLevels(sigBits: Int, tile: Int): Int = log2Ceil(chunks(sigBits, tile).size * chunks(sigBits, tile).size)
+  def treeLevels(sigBits: Int, tile: Int): Int = log2Ceil(tiles(sigBits, tile))
+
+  /** The DSP tiles of one product: every chunk of one operand times every chunk of the other. */
+  def tiles(sigBits: Int, tile: Int): Int = chunks(sigBits, tile).size * chunks(sigBits, tile).size
 
   /** Estimated delay of each stage on `fam` (FpgaFamily's model, ps). */
   def delays(p: FpParams, fam: FpgaFamily): Seq[Double] = {
