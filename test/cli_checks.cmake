@@ -530,6 +530,56 @@ elseif(CHECK STREQUAL "spheres_simd_ode")
   if(NOT hash STREQUAL sap)
     message(FATAL_ERROR "ode hash and sap differ:\n${hash}\n${sap}")
   endif()
+elseif(CHECK STREQUAL "spheres_grid")
+  # The tuned grid writes simd's contacts byte for byte at every thread count (bad spheres,
+  # touching and coincident pairs among them); --threads is checked and names itself.
+  file(WRITE ${WORK}/in.csv "x,y,z,r\n0,0,0,1\n0x1.8p+1,0,0,1\n 1.5 ,0,0,1\n\nnan,0,0,1\n0,0,0,-1\n-8,-8,-8,0.1\n-8,-8,-7.75,0.2\n0,0,0,0.5\n3,0,0,0.5\n40,40,40,30\n")
+  execute_process(COMMAND ${COLLIDE} spheres --backend simd --in ${WORK}/in.csv --out ${WORK}/simd.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  file(READ ${WORK}/simd.csv want)
+  foreach(threads 1 2 3)
+    execute_process(COMMAND ${COLLIDE} spheres --backend grid --threads ${threads} --in ${WORK}/in.csv --out ${WORK}/grid.csv
+                            --repeat 2 --summary ${WORK}/summary.json
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+    expect_match("${err}" "10 spheres \\(2 bad\\), [0-9]+ candidate pairs, [0-9]+ contacts, grid \\(tuned, ${threads} threads?\\)")
+    expect_match("${err}" "time \\(fastest of 2\\): broad [0-9.]+ us, narrow [0-9.]+ us, finish [0-9.]+ us")
+    file(READ ${WORK}/grid.csv got)
+    if(NOT got STREQUAL want)
+      message(FATAL_ERROR "--threads ${threads}: grid.csv differs from simd's:\n--- got\n${got}--- want\n${want}")
+    endif()
+    file(READ ${WORK}/summary.json summary)
+    string(JSON n GET "${summary}" threads)
+    string(JSON backendName GET "${summary}" backend)
+    if(NOT n EQUAL threads OR NOT backendName STREQUAL "grid")
+      message(FATAL_ERROR "summary.json: ${summary}")
+    endif()
+  endforeach()
+  # Default: every hardware thread.
+  execute_process(COMMAND ${COLLIDE} spheres --backend grid --in ${WORK}/in.csv --out ${WORK}/grid.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  file(READ ${WORK}/grid.csv got)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "default threads: grid.csv differs from simd's")
+  endif()
+  foreach(threads 0 -2 abc 1.5 1025 99999999999)
+    execute_process(COMMAND ${COLLIDE} spheres --backend grid --threads=${threads} --in ${WORK}/in.csv --out ${WORK}/bad.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(rc EQUAL 0)
+      message(FATAL_ERROR "--threads ${threads} accepted:\n${err}")
+    endif()
+    expect_match("${err}" "--threads: expected a whole number of threads in 1..1024, got '?${threads}'?")
+  endforeach()
+  foreach(backend simd ode)
+    execute_process(COMMAND ${COLLIDE} spheres --backend ${backend} --threads 2 --in ${WORK}/in.csv --out ${WORK}/bad.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(rc EQUAL 0)
+      message(FATAL_ERROR "--threads with ${backend} accepted")
+    endif()
+    expect_match("${err}" "--threads applies to --backend grid")
+  endforeach()
 elseif(CHECK STREQUAL "spheres_bad_input")
   # Bad files name the file, the line and the problem; an AFU without world mode (or none) says so.
   foreach(case "x,y,z\n;in.csv:1: expected the header 'x,y,z,r', got 'x,y,z'"

@@ -21,6 +21,7 @@
 #include "world/afu_world.hpp"
 #include "world/grid_broad_phase.hpp"
 #include "world/ode_space_broad_phase.hpp"
+#include "world/tuned_world.hpp"
 #include "world/world_collider.hpp"
 
 namespace collide::cli {
@@ -43,7 +44,7 @@ Pipeline makePipeline(const SpheresOptions& o) {
     p.broad = std::make_unique<world::OdeSpaceBroadPhase>(space == "hash" ? world::OdeSpaceKind::Hash
                                                                           : world::OdeSpaceKind::SweepAndPrune);
   } else {
-    throw std::invalid_argument("unknown backend '" + o.backend + "' (expected simd or ode)");
+    throw std::invalid_argument("unknown backend '" + o.backend + "' (expected simd, grid or ode)");
   }
   BackendRequest req;  // the construction path of `run` and `pairs` too
   req.name = o.backend;
@@ -153,12 +154,70 @@ int runSpheresAfu(const SpheresOptions& o) {
   return 0;
 }
 
+
+// The fastest of `repeat` collisions, phase by phase (the least disturbed on a shared
+// machine); every run gives the same contacts.
+template <typename Collide>
+world::WorldTiming fastestOf(int repeat, Collide collideOnce) {
+  constexpr auto kMax = std::numeric_limits<std::int64_t>::max();
+  world::WorldTiming best{kMax, kMax, kMax};
+  for (int k = 0; k < repeat; ++k) {
+    world::WorldTiming t;
+    collideOnce(t);
+    best.broadNs = std::min(best.broadNs, t.broadNs);
+    best.narrowNs = std::min(best.narrowNs, t.narrowNs);
+    best.finishNs = std::min(best.finishNs, t.finishNs);
+  }
+  return best;
+}
+
+// The tuned grid (world/tuned_world.hpp): simd's contacts, on --threads threads.
+int runSpheresGrid(const SpheresOptions& o) {
+  if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (grid has its own cells)");
+  world::TunedWorld tuned(o.threads.value_or(world::ThreadTeam::hardwareThreads()));
+  OutputFile out(o.out, OutputFile::Dash::IsStdout);
+  std::unique_ptr<OutputFile> summary = o.summary.empty() ? nullptr : std::make_unique<OutputFile>(o.summary);
+  SphereTable spheres;
+  readSpheres(o, LinkFormat::Binary32, spheres);
+  world::WorldContacts w;
+  const world::WorldTiming best = fastestOf(o.repeat, [&](world::WorldTiming& t) { tuned.collide(spheres, w, t); });
+  writeWorldContactsCsv(out.stream(), w);
+  out.commit();
+
+  std::cerr << "collide spheres: " << spheres.size() << " spheres (" << w.badSpheres.size() << " bad), " << w.candidates
+            << " candidate pairs, " << w.pairs.size() << " contacts, " << tuned.name() << ", levels:";
+  for (const auto& l : tuned.lastLevels())
+    std::cerr << " " << l.spheres << " spheres in cells of " << l.cellEdge << " m (" << l.large << " large);";
+  std::cerr << " narrow phase simd (binary32)\n"
+            << std::fixed << std::setprecision(1) << "  time (fastest of " << o.repeat << "): broad " << us(best.broadNs)
+            << " us, narrow " << us(best.narrowNs) << " us, finish " << us(best.finishNs)
+            << " us (broad: cells and the binary32 test; narrow: the contacts' values and flags; finish: ordering)\n";
+  if (summary) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (const auto& l : tuned.lastLevels())
+      levels.push_back({{"spheres", l.spheres}, {"large", l.large}, {"cell_edge", l.cellEdge}});
+    nlohmann::json j = {{"spheres", spheres.size()},       {"bad_spheres", w.badSpheres.size()},
+                        {"candidates", w.candidates},      {"contacts", w.pairs.size()},
+                        {"backend", "grid"},               {"broad_phase", "tuned grid"},
+                        {"format", toString(w.contacts.format)}, {"repeat", o.repeat},
+                        {"threads", tuned.threads()},      {"broad_ns", best.broadNs},
+                        {"narrow_ns", best.narrowNs},      {"finish_ns", best.finishNs},
+                        {"levels", levels}};
+    summary->stream() << j.dump(2) << "\n";
+    summary->commit();
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runSpheres(const SpheresOptions& o) {
   return reportErrors("collide spheres", [&]() -> int {
+    if (o.threads && (o.backend != "grid" || !o.afu.empty()))
+      throw std::invalid_argument("--threads applies to --backend grid (the others run on one thread)");
     if (!o.afu.empty() || o.backend == "rtl") return runSpheresAfu(o);
     refuseClockOption(o.clockMHz, "--backend " + o.backend);
+    if (o.backend == "grid") return runSpheresGrid(o);
     Pipeline p = makePipeline(o);
     // Opened first, so that a bad path fails before the work; replaced only when complete.
     OutputFile out(o.out, OutputFile::Dash::IsStdout);
@@ -166,19 +225,9 @@ int runSpheres(const SpheresOptions& o) {
     SphereTable spheres;
     readSpheres(o, p.narrow->format(), spheres);
 
-    // The fastest of `repeat` runs, phase by phase (the least disturbed on a shared machine);
-    // every run gives the same contacts.
     world::WorldCollider collider(*p.broad, *p.narrow);
     world::WorldContacts w;
-    world::WorldTiming best{std::numeric_limits<std::int64_t>::max(), std::numeric_limits<std::int64_t>::max(),
-                            std::numeric_limits<std::int64_t>::max()};
-    for (int k = 0; k < o.repeat; ++k) {
-      world::WorldTiming t;
-      collider.collide(spheres, w, t);
-      best.broadNs = std::min(best.broadNs, t.broadNs);
-      best.narrowNs = std::min(best.narrowNs, t.narrowNs);
-      best.finishNs = std::min(best.finishNs, t.finishNs);
-    }
+    const world::WorldTiming best = fastestOf(o.repeat, [&](world::WorldTiming& t) { collider.collide(spheres, w, t); });
 
     writeWorldContactsCsv(out.stream(), w);
     out.commit();

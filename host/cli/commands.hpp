@@ -39,7 +39,8 @@ struct PairsOptions {
 };
 
 struct SpheresOptions {
-  std::string backend = "simd";  // simd (our grid + binary32 kernel) | ode (an ODE space + dCollide)
+  std::string backend = "simd";  // simd (our grid + binary32 kernel) | grid (the tuned grid) | ode (an ODE space + dCollide)
+  std::optional<unsigned> threads;  // grid: threads (unset: every hardware thread)
   std::string space;             // ode: hash | sap ("" = the default, kDefaultOdeSpace)
   std::string afu;               // world mode on this generated AFU (manifest afu.world); "" with backend rtl: the built-in one
   std::string link = link::kDefaultPreset;  // rtl: a link preset name
@@ -48,6 +49,8 @@ struct SpheresOptions {
   int repeat = 1;                // run the whole collision this many times, report the fastest of each phase
   std::string summary;           // counts and times as JSON
 };
+// The most `collide spheres --threads` takes.
+inline constexpr int kMaxThreads = 1024;
 // The faster of ODE's two spaces on bench/world's clouds (bench/results/world).
 inline constexpr const char* kDefaultOdeSpace = "sap";
 

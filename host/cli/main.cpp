@@ -23,6 +23,18 @@ long long parseSteps(const std::string& text) {
   return n;
 }
 
+// A thread count in 1..kMaxThreads, or a message that names the option; read as text so
+// that 0, a negative number and a word get the same message.
+unsigned parseThreads(const std::string& text) {
+  const std::string want =
+      "--threads: expected a whole number of threads in 1.." + std::to_string(collide::cli::kMaxThreads) + ", got ";
+  if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos)
+    throw CLI::ValidationError(want + "'" + collide::util::clip(text) + "'");
+  const long n = std::stol(text);  // at most 9 digits: no overflow
+  if (n < 1 || n > collide::cli::kMaxThreads) throw CLI::ValidationError(want + text);
+  return static_cast<unsigned>(n);
+}
+
 // CLI11 reads an unknown subcommand as a stray argument and says "A subcommand is
 // required"; name it instead.
 bool unknownSubcommand(int argc, char** argv) {
@@ -105,9 +117,12 @@ int main(int argc, char** argv) {
   SpheresOptions spheres;
   auto* w = app.add_subcommand("spheres", "world mode: every contact among the spheres of a CSV file");
   w->add_option("--backend", spheres.backend,
-                "simd: our grid + the binary32 kernel; ode: an ODE space + dCollide (binary64); rtl: the built-in AFU's world mode")
+                "simd: our grid + the binary32 kernel; grid: the tuned grid, the same contacts on --threads threads; "
+                "ode: an ODE space + dCollide (binary64); rtl: the built-in AFU's world mode")
       ->capture_default_str()
-      ->check(CLI::IsMember({"simd", "ode", "rtl"}));
+      ->check(CLI::IsMember({"simd", "grid", "ode", "rtl"}));
+  w->add_option_function<std::string>("--threads", [&](const std::string& n) { spheres.threads = parseThreads(n); },
+                                      "grid: threads to run on (default: every hardware thread)");
   w->add_option("--space", spheres.space, std::string("ode: hash or sap (default ") + kDefaultOdeSpace + ")")
       ->check(CLI::IsMember({"hash", "sap"}));
   w->add_option("--afu", spheres.afu, "world mode on a generated AFU (the world preset): its broad phase and SCPUs");
