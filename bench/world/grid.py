@@ -5,7 +5,7 @@ simd backend's (the script stops otherwise).
 
     tools/pyenv bench/world/grid.py [--collide build/host/collide] [--repeat 20]
                                     [--sizes 10000,65536] [--seed 1] [--threads 1,2]
-                                    [--out bench/results/grid]
+                                    [--out bench/results/grid] [--note TEXT]
 
 Clouds: world.py's `uniform` (radius 0.5, about one contact a sphere) at each size, and
 `clustered-mixed`: world.py's clustered layout (Gaussian clusters of about 200) with radii
@@ -20,6 +20,7 @@ import hashlib
 import json
 import os
 import random
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -68,7 +69,7 @@ def lscpu_model():
     return next((l.split(":", 1)[1].strip() for l in text.splitlines() if l.startswith("Model name")), "?")
 
 
-def report(rows, out, cmd, start, end):
+def report(rows, out, cmd, start, end, note):
     ms = lambda ns: f"{float(ns) / 1e6:.3f}"
     lines = ["# The tuned grid against the simd grid (world mode on the CPU)", "",
              "`collide spheres --backend simd` (today's grid + the binary32 kernel) and `--backend grid`",
@@ -95,7 +96,7 @@ def report(rows, out, cmd, start, end):
             lines.append("")
     lines += ["## How and where", "", f"Command: `{cmd}` (collide built Release: `cmake -S host -B build/host -G Ninja "
               "-DCMAKE_BUILD_TYPE=Release -DCOLLIDE_AFU_PRESET= -DCOLLIDE_AFU_DIR=`).", "",
-              f"Machine: {start}. End: {end}.", ""]
+              f"Machine: {start}. End: {end}.", ""] + ([note, ""] if note else [])
     (out / "README.md").write_text("\n".join(lines) + "\n")
 
 
@@ -107,10 +108,11 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--out", default=str(ROOT / "bench/results/grid"))
+    ap.add_argument("--note", default="", help="a paragraph on the machine's state for the README")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    cmd = "tools/pyenv bench/world/grid.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    cmd = "tools/pyenv bench/world/grid.py " + shlex.join(argv if argv is not None else sys.argv[1:])
     start = (f"{lscpu_model()} ({os.cpu_count()} CPUs), load average {os.getloadavg()[0]:.2f} at start, "
              f"niceness {os.nice(0)}")
     rows = []
@@ -139,7 +141,7 @@ def main(argv=None):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    report(rows, out, cmd.strip(), start, f"load average {os.getloadavg()[0]:.2f}")
+    report(rows, out, cmd.strip(), start, f"load average {os.getloadavg()[0]:.2f}", a.note)
     return 0
 
 
