@@ -136,6 +136,20 @@ std::vector<Case> randomCases(std::uint64_t seed) {
   mixed.logRadii = true;
   cases.push_back({"mixed radii 1:1000", test::randomWorld(seed + 3, mixed)});
   for (auto& c : cases) addTouchingAndCoincident(seed + 4, c.spheres, 400);
+  // Equal spheres in touching pairs along an axis (d = r1 + r2 = the cut diameter, the
+  // cell edge's own case), some nudged an ulp closer, at random places.
+  std::mt19937_64 rng(seed + 5);
+  std::uniform_real_distribution<double> u(-40, 40);
+  SphereTable pairs;
+  for (int k = 0; k < 3000; ++k) {
+    float a[3] = {static_cast<float>(u(rng)), static_cast<float>(u(rng)), static_cast<float>(u(rng))};
+    float b[3] = {a[0], a[1], a[2]};
+    b[k % 3] += 1.0f;  // d = 1 exactly: both are multiples of the ulp of a, under 64
+    if (k % 5 == 0) b[k % 3] = std::nextafter(b[k % 3], a[k % 3]);
+    pairs.push(a[0], a[1], a[2], 0.5);
+    pairs.push(b[0], b[1], b[2], 0.5);
+  }
+  cases.push_back({"touching pairs of equal spheres", pairs});
   // Bad spheres among them: listed, never collided.
   cases[0].spheres.push(std::nan(""), 0, 0, 1);
   cases[0].spheres.push(0, 0, 0, -1);
