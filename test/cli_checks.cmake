@@ -580,6 +580,66 @@ elseif(CHECK STREQUAL "spheres_grid")
     endif()
     expect_match("${err}" "--threads applies to --backend grid")
   endforeach()
+elseif(CHECK STREQUAL "spheres_engines")
+  # Bullet's and FCL's broad phases feed the binary32 kernel: simd's contacts byte for byte
+  # (bad spheres, touching and coincident pairs among them), with the engine's own narrow
+  # phase counted on stderr and in the summary; ODE's quadtree writes ODE sap's contacts. A
+  # build without an engine (HAVE_BULLET, HAVE_FCL) says so; a space of another engine is refused.
+  file(WRITE ${WORK}/in.csv "x,y,z,r\n0,0,0,1\n0x1.8p+1,0,0,1\n 1.5 ,0,0,1\n\nnan,0,0,1\n0,0,0,-1\n-8,-8,-8,0.1\n-8,-8,-7.75,0.2\n0,0,0,0.5\n3,0,0,0.5\n40,40,40,30\n")
+  execute_process(COMMAND ${COLLIDE} spheres --backend simd --in ${WORK}/in.csv --out ${WORK}/simd.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  file(READ ${WORK}/simd.csv want)
+  foreach(run "bullet;dbvt;${HAVE_BULLET}" "bullet;sap;${HAVE_BULLET}" "fcl;tree;${HAVE_FCL}" "fcl;sap;${HAVE_FCL}"
+              "fcl;hash;${HAVE_FCL}")
+    list(GET run 0 backend)
+    list(GET run 1 space)
+    list(GET run 2 have)
+    execute_process(COMMAND ${COLLIDE} spheres --backend ${backend} --space ${space} --in ${WORK}/in.csv
+                            --out ${WORK}/${backend}.csv --repeat 2 --summary ${WORK}/summary.json
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT have)
+      expect_rc(1)
+      expect_match("${err}" "--backend ${backend}: this build has no")
+      continue()
+    endif()
+    expect_rc(0)
+    expect_match("${err}" "10 spheres \\(2 bad\\), [0-9]+ candidate pairs, [0-9]+ contacts, broad phase ${backend} ${space} \\(")
+    expect_match("${err}" "narrow phase simd \\(binary32\\)")
+    expect_match("${err}" "the engine's own narrow phase, [^\n]*: [0-9.]+ us, [0-9]+ contacts \\(0 that binary32 calls no contact, 0 binary32 contacts it misses")
+    file(READ ${WORK}/${backend}.csv got)
+    if(NOT got STREQUAL want)
+      message(FATAL_ERROR "${backend} ${space}: contacts differ from simd's:\n--- got\n${got}--- want\n${want}")
+    endif()
+    file(READ ${WORK}/summary.json summary)
+    string(JSON backendName GET "${summary}" backend)
+    string(JSON narrowName GET "${summary}" narrow_phase)
+    string(JSON onlyExact GET "${summary}" engine only_exact)
+    if(NOT backendName STREQUAL backend OR NOT narrowName STREQUAL "simd" OR NOT onlyExact EQUAL 0)
+      message(FATAL_ERROR "summary.json: ${summary}")
+    endif()
+  endforeach()
+  foreach(space sap quadtree)
+    execute_process(COMMAND ${COLLIDE} spheres --backend ode --space ${space} --in ${WORK}/in.csv --out ${WORK}/ode_${space}.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+    expect_match("${err}" "broad phase ode ${space}, narrow phase ode \\(binary64\\)")
+  endforeach()
+  file(READ ${WORK}/ode_sap.csv sap)
+  file(READ ${WORK}/ode_quadtree.csv quad)
+  if(NOT sap STREQUAL quad)
+    message(FATAL_ERROR "ode sap and quadtree differ:\n${sap}\n${quad}")
+  endif()
+  foreach(bad "bullet;tree;is no Bullet broad phase" "fcl;dbvt;is no FCL manager" "ode;dbvt;is no ODE space"
+              "simd;quadtree;applies to --backend ode, bullet or fcl")
+    list(GET bad 0 backend)
+    list(GET bad 1 space)
+    list(GET bad 2 message)
+    execute_process(COMMAND ${COLLIDE} spheres --backend ${backend} --space ${space} --in ${WORK}/in.csv --out ${WORK}/bad.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(1)
+    expect_match("${err}" "--space ${space} ${message}")
+  endforeach()
 elseif(CHECK STREQUAL "spheres_bad_input")
   # Bad files name the file, the line and the problem; an AFU without world mode (or none) says so.
   foreach(case "x,y,z\n;in.csv:1: expected the header 'x,y,z,r', got 'x,y,z'"

@@ -8,6 +8,10 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 # Debian packages, each for one job:
 #   verilator        - simulates the generated AFU for the C++ host and the big specs
 #   libode-dev       - the physics engine (double precision, Debian's 0.16.2)
+#   libbullet-dev    - Bullet 3's broad phases (dbvt, axis sweep) as `collide spheres
+#                      --backend bullet`, timed against ours (built only where found)
+#   libfcl-dev       - FCL's broad-phase managers (tree, sweep and prune, spatial hash) as
+#                      `collide spheres --backend fcl`, likewise
 #   yosys            - area estimates (synth_intel_alm) for the design-space sweeps
 #   nlohmann-json3-dev, libcli11-dev - JSON and command-line parsing in the host
 #   libgtest-dev     - the host's unit tests (ctest)
@@ -20,7 +24,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 #                      one-node cluster its tests start (slurmctld, slurmd, munged); not
 #                      where Slurm's commands are already on PATH (a cluster's own Slurm,
 #                      often from a module, which Debian's would shadow or clash with)
-packages=(verilator libode-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev
+packages=(verilator libode-dev libbullet-dev libfcl-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev
           cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache)
 if ! command -v sbatch >/dev/null 2>&1 || dpkg-query -W -f='${Status}' slurm-wlm 2>/dev/null | grep -q "install ok installed"; then
   packages+=(slurm-wlm munge)

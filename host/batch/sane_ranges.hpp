@@ -23,9 +23,13 @@ inline constexpr double kMinMassKg = 1e-9, kMaxMassKg = 1e9;
 inline constexpr double kMinDtS = 1e-9, kMaxDtS = 10;
 
 // ODE's broad phase: its hash space (ODE's default) or sweep and prune (axes x, y, z), for a
-// scene's pairs path and for `collide spheres --backend ode` alike (ode::createSpace).
-enum class OdeSpaceKind { Hash, SweepAndPrune };
-inline const char* toString(OdeSpaceKind k) { return k == OdeSpaceKind::Hash ? "hash" : "sap"; }
+// scene's pairs path and for `collide spheres --backend ode` alike (ode::createSpace); and its
+// quadtree, for `collide spheres` only, since it is made for the world's box
+// (world/ode_space_broad_phase.*).
+enum class OdeSpaceKind { Hash, SweepAndPrune, QuadTree };
+inline const char* toString(OdeSpaceKind k) {
+  return k == OdeSpaceKind::Hash ? "hash" : k == OdeSpaceKind::SweepAndPrune ? "sap" : "quadtree";
+}
 
 // ODE 0.16's hash space marks tested pairs in an n x ceil(n/8) byte matrix whose size is an
 // int (dxHashSpace::collide, collision_space.cpp): from 131,072 spheres on it overflows and ODE

@@ -1,5 +1,6 @@
 // collide spheres: world mode on the CPU (docs/host.md, "collide spheres").
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -19,6 +20,13 @@
 #include "util/input_file.hpp"
 #include "link/link_presets.hpp"
 #include "world/afu_world.hpp"
+#if COLLIDE_HAVE_BULLET
+#include "world/bullet_broad_phase.hpp"
+#endif
+#include "world/engine_broad_phase.hpp"
+#if COLLIDE_HAVE_FCL
+#include "world/fcl_broad_phase.hpp"
+#endif
 #include "world/grid_broad_phase.hpp"
 #include "world/ode_space_broad_phase.hpp"
 #include "world/tuned_world.hpp"
@@ -37,17 +45,42 @@ Pipeline makePipeline(const SpheresOptions& o) {
   Pipeline p;
   if (o.backend == "simd") {
     if (!o.space.empty())
-      throw std::invalid_argument("--space " + o.space + " applies to --backend ode (simd has its own grid)");
+      throw std::invalid_argument("--space " + o.space + " applies to --backend ode, bullet or fcl (simd has its own grid)");
     p.broad = std::make_unique<world::GridBroadPhase>();
   } else if (o.backend == "ode") {
     const std::string space = o.space.empty() ? kDefaultOdeSpace : o.space;
-    p.broad = std::make_unique<world::OdeSpaceBroadPhase>(space == "hash" ? world::OdeSpaceKind::Hash
-                                                                          : world::OdeSpaceKind::SweepAndPrune);
+    if (space != "hash" && space != "sap" && space != "quadtree")
+      throw std::invalid_argument("--space " + space + " is no ODE space (expected hash, sap or quadtree)");
+    p.broad = std::make_unique<world::OdeSpaceBroadPhase>(space == "hash"  ? world::OdeSpaceKind::Hash
+                                                          : space == "sap" ? world::OdeSpaceKind::SweepAndPrune
+                                                                           : world::OdeSpaceKind::QuadTree);
+  } else if (o.backend == "bullet") {
+    const std::string space = o.space.empty() ? kDefaultBulletSpace : o.space;
+    if (space != "dbvt" && space != "sap")
+      throw std::invalid_argument("--space " + space + " is no Bullet broad phase (expected dbvt or sap)");
+#if COLLIDE_HAVE_BULLET
+    p.broad = std::make_unique<world::BulletBroadPhase>(space == "dbvt" ? world::BulletBroadKind::Dbvt
+                                                                        : world::BulletBroadKind::AxisSweep);
+#else
+    throw std::invalid_argument("--backend bullet: this build has no Bullet (CMake found no pkg-config bullet)");
+#endif
+  } else if (o.backend == "fcl") {
+    const std::string space = o.space.empty() ? kDefaultFclSpace : o.space;
+    if (space != "tree" && space != "sap" && space != "hash")
+      throw std::invalid_argument("--space " + space + " is no FCL manager (expected tree, sap or hash)");
+#if COLLIDE_HAVE_FCL
+    p.broad = std::make_unique<world::FclBroadPhase>(space == "tree"  ? world::FclManagerKind::DynamicTree
+                                                     : space == "sap" ? world::FclManagerKind::SweepAndPrune
+                                                                      : world::FclManagerKind::SpatialHash);
+#else
+    throw std::invalid_argument("--backend fcl: this build has no FCL (CMake found no package fcl)");
+#endif
   } else {
-    throw std::invalid_argument("unknown backend '" + o.backend + "' (expected simd, grid or ode)");
+    throw std::invalid_argument("unknown backend '" + o.backend + "' (expected simd, grid, ode, bullet or fcl)");
   }
   BackendRequest req;  // the construction path of `run` and `pairs` too
-  req.name = o.backend;
+  // Another engine's broad phase feeds the binary32 kernel: simd's contacts.
+  req.name = o.backend == "bullet" || o.backend == "fcl" ? "simd" : o.backend;
   p.narrow = makeBackend(req);
   // An ODE space with the ode narrow phase: dCollide on the space's own geoms (narrow is
   // destroyed first, so it never holds them dangling).
@@ -80,7 +113,7 @@ nlohmann::json statusJson(const driver::StatusLine& s) {
 // World mode on the AFU: one run a slab (all in one call through a run queue; its cycles do not
 // vary), timed by the link model.
 int runSpheresAfu(const SpheresOptions& o) {
-  if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
+  if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode, bullet or fcl (the AFU has its own grid)");
   link::LinkParams lp = link::presetParams(o.link);
   const auto clock = applyClockOption(lp, o.clockMHz);
   driver::AfuPortOptions po;
@@ -173,7 +206,7 @@ world::WorldTiming fastestOf(int repeat, Collide collideOnce) {
 
 // The tuned grid (world/tuned_world.hpp): simd's contacts, on --threads threads.
 int runSpheresGrid(const SpheresOptions& o) {
-  if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (grid has its own cells)");
+  if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode, bullet or fcl (grid has its own cells)");
   world::TunedWorld tuned(o.threads.value_or(world::ThreadTeam::hardwareThreads()));
   OutputFile out(o.out, OutputFile::Dash::IsStdout);
   std::unique_ptr<OutputFile> summary = o.summary.empty() ? nullptr : std::make_unique<OutputFile>(o.summary);
@@ -227,7 +260,21 @@ int runSpheres(const SpheresOptions& o) {
 
     world::WorldCollider collider(*p.broad, *p.narrow);
     world::WorldContacts w;
-    const world::WorldTiming best = fastestOf(o.repeat, [&](world::WorldTiming& t) { collider.collide(spheres, w, t); });
+    // Another engine's own narrow phase, on the candidates of each collision (timed apart;
+    // its contacts only counted against ours).
+    auto* engine = dynamic_cast<world::EngineBroadPhase*>(p.broad.get());
+    PairList engineFound;
+    std::int64_t engineNs = std::numeric_limits<std::int64_t>::max();
+    const world::WorldTiming best = fastestOf(o.repeat, [&](world::WorldTiming& t) {
+      collider.collide(spheres, w, t);
+      if (!engine) return;
+      engineFound = PairList{};
+      const auto t0 = std::chrono::steady_clock::now();
+      engine->engineContacts(spheres, engineFound);
+      engineNs = std::min<std::int64_t>(
+          engineNs, std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+    });
+    const world::EngineDiff diff = engine ? world::compareContacts(engineFound, w.pairs) : world::EngineDiff{};
 
     writeWorldContactsCsv(out.stream(), w);
     out.commit();
@@ -241,10 +288,15 @@ int runSpheres(const SpheresOptions& o) {
               << std::fixed << std::setprecision(1) << "  time (fastest of " << o.repeat << "): broad " << us(best.broadNs)
               << " us, narrow " << us(best.narrowNs) << " us, finish " << us(best.finishNs)
               << " us (flags, policy, sorting)\n";
+    if (engine)
+      std::cerr << "  the engine's own narrow phase, " << engine->engineNarrowName() << ", on the same candidates: "
+                << us(engineNs) << " us, " << engineFound.size() << " contacts (" << diff.onlyEngine
+                << " that binary32 calls no contact, " << diff.onlyExact
+                << " binary32 contacts it misses; not written)\n";
     if (summary) {
       nlohmann::json j = {{"spheres", spheres.size()},      {"bad_spheres", w.badSpheres.size()},
                           {"candidates", w.candidates},     {"contacts", w.pairs.size()},
-                          {"backend", p.narrow->name()},    {"broad_phase", p.broad->name()},
+                          {"backend", engine ? o.backend : p.narrow->name()}, {"broad_phase", p.broad->name()},
                           {"format", toString(w.contacts.format)}, {"repeat", o.repeat},
                           {"broad_ns", best.broadNs},       {"narrow_ns", best.narrowNs},
                           {"finish_ns", best.finishNs}};
@@ -253,6 +305,12 @@ int runSpheres(const SpheresOptions& o) {
                      {"large", grid->lastShape().large},
                      {"buckets", grid->lastShape().buckets},
                      {"cell_pairs", grid->lastShape().cellPairs}};
+      if (engine) {
+        j["narrow_phase"] = p.narrow->name();
+        j["engine"] = {{"narrow_phase", engine->engineNarrowName()}, {"narrow_ns", engineNs},
+                       {"contacts", engineFound.size()},             {"only_engine", diff.onlyEngine},
+                       {"only_exact", diff.onlyExact}};
+      }
       summary->stream() << j.dump(2) << "\n";
       summary->commit();
     }

@@ -39,9 +39,12 @@ struct PairsOptions {
 };
 
 struct SpheresOptions {
-  std::string backend = "simd";  // simd (our grid + binary32 kernel) | grid (the tuned grid) | ode (an ODE space + dCollide)
+  // simd (our grid + binary32 kernel) | grid (the tuned grid) | ode (an ODE space + dCollide) |
+  // bullet, fcl (that engine's broad phase + the binary32 kernel, where built)
+  std::string backend = "simd";
   std::optional<unsigned> threads;  // grid: threads (unset: every hardware thread)
-  std::string space;             // ode: hash | sap ("" = the default, kDefaultOdeSpace)
+  // ode: hash | sap | quadtree; bullet: dbvt | sap; fcl: tree | sap | hash ("": the default)
+  std::string space;
   std::string afu;               // world mode on this generated AFU (manifest afu.world); "" with backend rtl: the built-in one
   std::string link = link::kDefaultPreset;  // rtl: a link preset name
   std::optional<double> clockMHz; // rtl: the AFU's clock instead of the preset's
@@ -53,6 +56,9 @@ struct SpheresOptions {
 inline constexpr int kMaxThreads = 1024;
 // The faster of ODE's two spaces on bench/world's clouds (bench/results/world).
 inline constexpr const char* kDefaultOdeSpace = "sap";
+// Bullet's and FCL's defaults: their dynamic AABB trees, what each engine's own worlds use.
+inline constexpr const char* kDefaultBulletSpace = "dbvt";
+inline constexpr const char* kDefaultFclSpace = "tree";
 
 struct InfoOptions {
   std::string afu;     // print this generated AFU's manifest...

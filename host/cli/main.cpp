@@ -118,13 +118,17 @@ int main(int argc, char** argv) {
   auto* w = app.add_subcommand("spheres", "world mode: every contact among the spheres of a CSV file");
   w->add_option("--backend", spheres.backend,
                 "simd: our grid + the binary32 kernel; grid: the tuned grid, the same contacts on --threads threads; "
-                "ode: an ODE space + dCollide (binary64); rtl: the built-in AFU's world mode")
+                "ode: an ODE space + dCollide (binary64); bullet, fcl: that engine's broad phase + the binary32 "
+                "kernel (where built); rtl: the built-in AFU's world mode")
       ->capture_default_str()
-      ->check(CLI::IsMember({"simd", "grid", "ode", "rtl"}));
+      ->check(CLI::IsMember({"simd", "grid", "ode", "bullet", "fcl", "rtl"}));
   w->add_option_function<std::string>("--threads", [&](const std::string& n) { spheres.threads = parseThreads(n); },
                                       "grid: threads to run on (default: every hardware thread)");
-  w->add_option("--space", spheres.space, std::string("ode: hash or sap (default ") + kDefaultOdeSpace + ")")
-      ->check(CLI::IsMember({"hash", "sap"}));
+  w->add_option("--space", spheres.space,
+                std::string("the engine's broad phase: ode hash, sap or quadtree (default ") + kDefaultOdeSpace +
+                    "); bullet dbvt or sap (default " + kDefaultBulletSpace + "); fcl tree, sap or hash (default " +
+                    kDefaultFclSpace + ")")
+      ->check(CLI::IsMember({"hash", "sap", "quadtree", "dbvt", "tree"}));
   w->add_option("--afu", spheres.afu, "world mode on a generated AFU (the world preset): its broad phase and SCPUs");
   w->add_option("--link", spheres.link, "rtl: link preset (collide info --links)")->capture_default_str()
       ->check(CLI::IsMember(linkNames));

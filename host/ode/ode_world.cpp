@@ -1,14 +1,19 @@
 #include "ode/ode_world.hpp"
 
 #include <cstdint>
+#include <stdexcept>
 
 #include "ode/hash_space_repair.hpp"
 
 namespace collide::ode {
 
 dSpaceID createSpace(limits::OdeSpaceKind kind) {
-  return kind == limits::OdeSpaceKind::SweepAndPrune ? dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XYZ)
-                                                     : dHashSpaceCreate(nullptr);
+  switch (kind) {
+    case limits::OdeSpaceKind::SweepAndPrune: return dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XYZ);
+    case limits::OdeSpaceKind::Hash: return dHashSpaceCreate(nullptr);
+    case limits::OdeSpaceKind::QuadTree: break;
+  }
+  throw std::logic_error("ode::createSpace: a quadtree space needs its world's box (world/ode_space_broad_phase.*)");
 }
 
 World::World(const scene::Scene& s)

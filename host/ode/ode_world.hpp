@@ -12,7 +12,8 @@
 
 namespace collide::ode {
 
-// An empty space of that kind (sweep and prune on axes x, y, z, ODE's own default order).
+// An empty space of that kind (sweep and prune on axes x, y, z, ODE's own default order); a
+// quadtree needs a box and is refused here (logic_error).
 dSpaceID createSpace(limits::OdeSpaceKind kind);
 
 class World {

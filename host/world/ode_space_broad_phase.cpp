@@ -1,6 +1,7 @@
 #include "world/ode_space_broad_phase.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -14,13 +15,21 @@ namespace collide::world {
 
 OdeSpaceBroadPhase::OdeSpaceBroadPhase(OdeSpaceKind kind)
     : kind_(kind),
-      space_(ode::createSpace(kind)) {
-  dSpaceSetCleanup(space_, 0);  // the geoms are ours (clearGeoms)
+      space_(kind == OdeSpaceKind::QuadTree ? nullptr : ode::createSpace(kind)) {  // a quadtree: in prepare
+  if (space_) dSpaceSetCleanup(space_, 0);  // the geoms are ours (clearGeoms)
 }
 
 OdeSpaceBroadPhase::~OdeSpaceBroadPhase() {
   clearGeoms();
-  dSpaceDestroy(space_);
+  if (space_) dSpaceDestroy(space_);
+}
+
+int OdeSpaceBroadPhase::quadTreeDepth(std::size_t n, double edge, double rMedian) {
+  int depth = 1;
+  while (depth < 10 && std::ldexp(1.0, 2 * (depth + 1)) <= static_cast<double>(n) / 8 &&
+         std::ldexp(edge, -(depth + 1)) >= 8 * rMedian)
+    ++depth;
+  return depth;
 }
 
 void OdeSpaceBroadPhase::clearGeoms() {
@@ -33,8 +42,44 @@ void OdeSpaceBroadPhase::prepare(const SphereTable& s, const std::vector<std::ui
   const auto n = static_cast<long long>(members.size());
   if (kind_ == OdeSpaceKind::Hash && n > limits::kMaxHashSpaceSpheres)
     throw std::invalid_argument(limits::hashSpaceRefusal(n) + ": use --space sap");
-  const bool fresh = geoms_.size() != s.size() ||
-                     std::any_of(members.begin(), members.end(), [&](std::uint32_t m) { return !geoms_[m]; });
+  bool fresh = geoms_.size() != s.size() ||
+               std::any_of(members.begin(), members.end(), [&](std::uint32_t m) { return !geoms_[m]; });
+  if (kind_ == OdeSpaceKind::QuadTree) {
+    // The root block: the members' box, padded by 1 % and 1 mm (a geom outside it stays at
+    // the root, where it is tested against every other).
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    std::vector<double> radii;
+    radii.reserve(members.size());
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const auto m = members[k];
+      const double c[3] = {s.x[m], s.y[m], s.z[m]};
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = k ? std::min(lo[a], c[a] - s.r[m]) : c[a] - s.r[m];
+        hi[a] = k ? std::max(hi[a], c[a] + s.r[m]) : c[a] + s.r[m];
+      }
+      radii.push_back(s.r[m]);
+    }
+    double box[7];
+    for (int a = 0; a < 3; ++a) {
+      box[a] = (lo[a] + hi[a]) / 2;
+      box[3 + a] = (hi[a] - lo[a]) / 2 * 1.01 + 1e-3;
+    }
+    double rMedian = 1;
+    if (!radii.empty()) {
+      std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2), radii.end());
+      rMedian = radii[radii.size() / 2];
+    }
+    box[6] = quadTreeDepth(members.size(), 2 * std::max(box[3], box[4]), rMedian);
+    if (!space_ || !std::equal(box, box + 7, quadBox_)) {
+      clearGeoms();
+      if (space_) dSpaceDestroy(space_);
+      const dVector3 centre = {box[0], box[1], box[2], 0}, extents = {box[3], box[4], box[5], 0};
+      space_ = dQuadTreeSpaceCreate(nullptr, centre, extents, static_cast<int>(box[6]));
+      dSpaceSetCleanup(space_, 0);
+      std::copy(box, box + 7, quadBox_);
+      fresh = true;
+    }
+  }
   if (fresh) {
     clearGeoms();
     geoms_.assign(s.size(), nullptr);
