@@ -75937,10 +75937,9 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
   reg  [4:0]  used;
   reg  [13:0] topMax;
   reg         anyTop;
-  wire [13:0] levelSmall = used == 5'h11 ? kept_16 : kept_0;
-  wire [15:0] levelCoord = anyTop ? {topMax[13], topMax, 1'h0} - 16'h25 : 16'hE000;
-  wire [15:0] _GEN = {{2{levelSmall[13]}}, levelSmall};
-  wire [15:0] _io_level_T_1 = $signed(_GEN) > $signed(levelCoord) ? _GEN : levelCoord;
+  reg  [13:0] levelA;
+  reg  [15:0] levelB;
+  reg  [13:0] levelR;
   wire        after_ins_beats_0 = $signed(io_in_0_need) > $signed(kept_0);
   wire        after_ins_beats_1 = $signed(io_in_0_need) > $signed(kept_1);
   wire        after_ins_beats_2 = $signed(io_in_0_need) > $signed(kept_2);
@@ -75958,8 +75957,8 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
   wire        after_ins_beats_14 = $signed(io_in_0_need) > $signed(kept_14);
   wire        after_ins_beats_15 = $signed(io_in_0_need) > $signed(kept_15);
   wire        after_ins_beats_16 = $signed(io_in_0_need) > $signed(kept_16);
-  wire        _GEN_0 = io_in_0_valid & after_ins_beats_0;
-  wire [13:0] _after_T = _GEN_0 ? io_in_0_need : kept_0;
+  wire        _GEN = io_in_0_valid & after_ins_beats_0;
+  wire [13:0] _after_T = _GEN ? io_in_0_need : kept_0;
   wire [5:0]  _after_T_19 = {1'h0, used} + {5'h0, io_in_0_valid};
   wire        after_ins_beats_0_1 = $signed(io_in_1_need) > $signed(_after_T);
   wire [6:0]  _after_T_45 =
@@ -76042,7 +76041,8 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
   wire        after_hasTop = io_in_0_valid & ~io_in_0_topNone;
   wire        _after_T_25 = anyTop | after_hasTop;
   wire        after_hasTop_1 = io_in_1_valid & ~io_in_1_topNone;
-  wire        _GEN_1 = ~after_hasTop | anyTop & $signed(topMax) > $signed(io_in_0_top);
+  wire        _GEN_0 = ~after_hasTop | anyTop & $signed(topMax) > $signed(io_in_0_top);
+  wire [13:0] levelSmall = used == 5'h11 ? kept_16 : kept_0;
   always @(posedge clock) begin
     if (reset) begin
       kept_0 <= 14'h2000;
@@ -76091,7 +76091,7 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
       else begin
         if (io_in_1_valid & after_ins_beats_0_1)
           kept_0 <= io_in_1_need;
-        else if (_GEN_0)
+        else if (_GEN)
           kept_0 <= io_in_0_need;
         if (io_in_1_valid) begin
           if (after_ins_beats_0_1)
@@ -76329,8 +76329,8 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
         end
         used <= _after_T_45 > 7'h11 ? 5'h11 : _after_T_45[4:0];
         if (~after_hasTop_1 | _after_T_25
-            & $signed(_GEN_1 ? topMax : io_in_0_top) > $signed(io_in_1_top)) begin
-          if (_GEN_1) begin
+            & $signed(_GEN_0 ? topMax : io_in_0_top) > $signed(io_in_1_top)) begin
+          if (_GEN_0) begin
           end
           else
             topMax <= io_in_0_top;
@@ -76340,8 +76340,12 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
       end
       anyTop <= ~io_clear & (_after_T_25 | after_hasTop_1);
     end
+    levelA <= $signed(levelSmall) > -14'sh70 ? levelSmall : 14'h3F90;
+    levelB <= anyTop ? {topMax[13], topMax, 1'h0} - 16'h25 : 16'hE000;
+    levelR <=
+      $signed({{2{levelA[13]}}, levelA}) > $signed(levelB) ? levelA : levelB[13:0];
   end // always @(posedge)
-  assign io_level = $signed(_io_level_T_1) > -16'sh70 ? _io_level_T_1[13:0] : 14'h3F90;
+  assign io_level = levelR;
 endmodule
 
 // VCS coverage exclude_file
@@ -77278,138 +77282,544 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
   wire         _sumRead_T = state == 2'h2;
   wire         _sumRead_T_1 = walk < sumWords;
   wire         sumRead = _sumRead_T & _sumRead_T_1;
-  reg          sumS1;
+  reg          sumApply_REG;
+  reg          sumApply_r;
+  reg          sumApply_r_1;
+  reg          sumApply_r_2;
+  reg          sumApply_r_3;
+  reg          sumApply_r_4;
+  reg          sumApply_r_5;
+  reg          sumApply;
+  reg  [7:0]   sumW_REG;
+  reg  [7:0]   sumW_r;
+  reg  [7:0]   sumW_r_1;
+  reg  [7:0]   sumW_r_2;
+  reg  [7:0]   sumW_r_3;
+  reg  [7:0]   sumW_r_4;
+  reg  [7:0]   sumW_r_5;
   reg  [7:0]   sumW;
+  reg          sumLast_REG;
+  reg          sumLast_r;
+  reg          sumLast_r_1;
+  reg          sumLast_r_2;
+  reg          sumLast_r_3;
+  reg          sumLast_r_4;
+  reg          sumLast_r_5;
   reg          sumLast;
-  wire [10:0]  totals_1 = _cursors_0_ext_R0_data[21:11] + _tables_0_ext_R0_data[21:11];
-  wire [10:0]  totals_3 = _cursors_0_ext_R0_data[43:33] + _tables_0_ext_R0_data[43:33];
-  wire [10:0]  totals_5 = _cursors_0_ext_R0_data[65:55] + _tables_0_ext_R0_data[65:55];
-  wire [10:0]  totals_7 = _cursors_0_ext_R0_data[87:77] + _tables_0_ext_R0_data[87:77];
-  wire [10:0]  totals_9 = _cursors_0_ext_R0_data[109:99] + _tables_0_ext_R0_data[109:99];
-  wire [10:0]  totals_11 =
-    _cursors_0_ext_R0_data[131:121] + _tables_0_ext_R0_data[131:121];
-  wire [10:0]  totals_13 =
-    _cursors_0_ext_R0_data[153:143] + _tables_0_ext_R0_data[153:143];
-  wire [10:0]  totals_15 =
-    _cursors_0_ext_R0_data[175:165] + _tables_0_ext_R0_data[175:165];
-  wire [10:0]  totals_17 =
-    _cursors_0_ext_R0_data[197:187] + _tables_0_ext_R0_data[197:187];
-  wire [10:0]  totals_19 =
-    _cursors_0_ext_R0_data[219:209] + _tables_0_ext_R0_data[219:209];
-  wire [10:0]  totals_21 =
-    _cursors_0_ext_R0_data[241:231] + _tables_0_ext_R0_data[241:231];
-  wire [10:0]  totals_23 =
-    _cursors_0_ext_R0_data[263:253] + _tables_0_ext_R0_data[263:253];
-  wire [10:0]  totals_25 =
-    _cursors_0_ext_R0_data[285:275] + _tables_0_ext_R0_data[285:275];
-  wire [10:0]  totals_27 =
-    _cursors_0_ext_R0_data[307:297] + _tables_0_ext_R0_data[307:297];
-  wire [10:0]  totals_29 =
-    _cursors_0_ext_R0_data[329:319] + _tables_0_ext_R0_data[329:319];
-  wire [10:0]  totals_30 =
-    _cursors_0_ext_R0_data[340:330] + _tables_0_ext_R0_data[340:330];
-  wire [10:0]  starts_1 =
-    sum + _cursors_0_ext_R0_data[10:0] + _tables_0_ext_R0_data[10:0];
-  wire [10:0]  starts_2 = starts_1 + totals_1;
-  wire [10:0]  starts_3 =
-    starts_1 + totals_1 + _cursors_0_ext_R0_data[32:22] + _tables_0_ext_R0_data[32:22];
-  wire [10:0]  _inc_T_5 =
-    totals_3 + _cursors_0_ext_R0_data[54:44] + _tables_0_ext_R0_data[54:44];
-  wire [10:0]  starts_4 = starts_3 + totals_3;
-  wire [10:0]  starts_5 = starts_3 + _inc_T_5;
-  wire [10:0]  starts_6 = starts_3 + _inc_T_5 + totals_5;
-  wire [10:0]  starts_7 =
-    starts_3 + _inc_T_5 + totals_5 + _cursors_0_ext_R0_data[76:66]
-    + _tables_0_ext_R0_data[76:66];
-  wire [10:0]  _inc_T_17 =
-    totals_7 + _cursors_0_ext_R0_data[98:88] + _tables_0_ext_R0_data[98:88];
-  wire [10:0]  _inc_T_23 =
-    _inc_T_17 + totals_9 + _cursors_0_ext_R0_data[120:110]
-    + _tables_0_ext_R0_data[120:110];
-  wire [10:0]  _inc_T_25 =
-    totals_11 + _cursors_0_ext_R0_data[142:132] + _tables_0_ext_R0_data[142:132];
-  wire [10:0]  starts_8 = starts_7 + totals_7;
-  wire [10:0]  starts_9 = starts_7 + _inc_T_17;
-  wire [10:0]  starts_10 = starts_7 + _inc_T_17 + totals_9;
-  wire [10:0]  starts_11 = starts_7 + _inc_T_23;
-  wire [10:0]  starts_12 = starts_7 + _inc_T_23 + totals_11;
-  wire [10:0]  starts_13 = starts_7 + _inc_T_23 + _inc_T_25;
-  wire [10:0]  starts_14 = starts_7 + _inc_T_23 + _inc_T_25 + totals_13;
-  wire [10:0]  starts_15 =
-    starts_7 + _inc_T_23 + _inc_T_25 + totals_13 + _cursors_0_ext_R0_data[164:154]
-    + _tables_0_ext_R0_data[164:154];
-  wire [10:0]  _inc_T_49 =
-    totals_15 + _cursors_0_ext_R0_data[186:176] + _tables_0_ext_R0_data[186:176];
-  wire [10:0]  _inc_T_55 =
-    _inc_T_49 + totals_17 + _cursors_0_ext_R0_data[208:198]
-    + _tables_0_ext_R0_data[208:198];
-  wire [10:0]  _inc_T_57 =
-    totals_19 + _cursors_0_ext_R0_data[230:220] + _tables_0_ext_R0_data[230:220];
-  wire [10:0]  _inc_T_71 =
-    _inc_T_55 + _inc_T_57 + totals_21 + _cursors_0_ext_R0_data[252:242]
-    + _tables_0_ext_R0_data[252:242];
-  wire [10:0]  _inc_T_73 =
-    totals_23 + _cursors_0_ext_R0_data[274:264] + _tables_0_ext_R0_data[274:264];
-  wire [10:0]  _inc_T_79 =
-    _inc_T_73 + totals_25 + _cursors_0_ext_R0_data[296:286]
-    + _tables_0_ext_R0_data[296:286];
-  wire [10:0]  _inc_T_81 =
-    totals_27 + _cursors_0_ext_R0_data[318:308] + _tables_0_ext_R0_data[318:308];
-  wire [10:0]  starts_16 = starts_15 + totals_15;
-  wire [10:0]  starts_17 = starts_15 + _inc_T_49;
-  wire [10:0]  starts_18 = starts_15 + _inc_T_49 + totals_17;
-  wire [10:0]  starts_19 = starts_15 + _inc_T_55;
-  wire [10:0]  starts_20 = starts_15 + _inc_T_55 + totals_19;
-  wire [10:0]  starts_21 = starts_15 + _inc_T_55 + _inc_T_57;
-  wire [10:0]  starts_22 = starts_15 + _inc_T_55 + _inc_T_57 + totals_21;
-  wire [10:0]  starts_23 = starts_15 + _inc_T_71;
-  wire [10:0]  starts_24 = starts_15 + _inc_T_71 + totals_23;
-  wire [10:0]  starts_25 = starts_15 + _inc_T_71 + _inc_T_73;
-  wire [10:0]  starts_26 = starts_15 + _inc_T_71 + _inc_T_73 + totals_25;
-  wire [10:0]  starts_27 = starts_15 + _inc_T_71 + _inc_T_79;
-  wire [10:0]  starts_28 = starts_15 + _inc_T_71 + _inc_T_79 + totals_27;
-  wire [10:0]  starts_29 = starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81;
-  wire [10:0]  starts_30 = starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81 + totals_29;
-  wire [10:0]  starts_31 =
-    starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81 + totals_29 + totals_30;
-  wire [10:0]  _inc_T_139 =
-    starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81 + totals_29 + totals_30
-    + _cursors_0_ext_R0_data[351:341] + _tables_0_ext_R0_data[351:341];
+  reg  [10:0]  totals_0;
+  reg  [10:0]  totals_1;
+  reg  [10:0]  totals_2;
+  reg  [10:0]  totals_3;
+  reg  [10:0]  totals_4;
+  reg  [10:0]  totals_5;
+  reg  [10:0]  totals_6;
+  reg  [10:0]  totals_7;
+  reg  [10:0]  totals_8;
+  reg  [10:0]  totals_9;
+  reg  [10:0]  totals_10;
+  reg  [10:0]  totals_11;
+  reg  [10:0]  totals_12;
+  reg  [10:0]  totals_13;
+  reg  [10:0]  totals_14;
+  reg  [10:0]  totals_15;
+  reg  [10:0]  totals_16;
+  reg  [10:0]  totals_17;
+  reg  [10:0]  totals_18;
+  reg  [10:0]  totals_19;
+  reg  [10:0]  totals_20;
+  reg  [10:0]  totals_21;
+  reg  [10:0]  totals_22;
+  reg  [10:0]  totals_23;
+  reg  [10:0]  totals_24;
+  reg  [10:0]  totals_25;
+  reg  [10:0]  totals_26;
+  reg  [10:0]  totals_27;
+  reg  [10:0]  totals_28;
+  reg  [10:0]  totals_29;
+  reg  [10:0]  totals_30;
+  reg  [10:0]  totals_31;
+  reg  [10:0]  portOffsets_1_0;
+  reg  [10:0]  portOffsets_1_1;
+  reg  [10:0]  portOffsets_1_2;
+  reg  [10:0]  portOffsets_1_3;
+  reg  [10:0]  portOffsets_1_4;
+  reg  [10:0]  portOffsets_1_5;
+  reg  [10:0]  portOffsets_1_6;
+  reg  [10:0]  portOffsets_1_7;
+  reg  [10:0]  portOffsets_1_8;
+  reg  [10:0]  portOffsets_1_9;
+  reg  [10:0]  portOffsets_1_10;
+  reg  [10:0]  portOffsets_1_11;
+  reg  [10:0]  portOffsets_1_12;
+  reg  [10:0]  portOffsets_1_13;
+  reg  [10:0]  portOffsets_1_14;
+  reg  [10:0]  portOffsets_1_15;
+  reg  [10:0]  portOffsets_1_16;
+  reg  [10:0]  portOffsets_1_17;
+  reg  [10:0]  portOffsets_1_18;
+  reg  [10:0]  portOffsets_1_19;
+  reg  [10:0]  portOffsets_1_20;
+  reg  [10:0]  portOffsets_1_21;
+  reg  [10:0]  portOffsets_1_22;
+  reg  [10:0]  portOffsets_1_23;
+  reg  [10:0]  portOffsets_1_24;
+  reg  [10:0]  portOffsets_1_25;
+  reg  [10:0]  portOffsets_1_26;
+  reg  [10:0]  portOffsets_1_27;
+  reg  [10:0]  portOffsets_1_28;
+  reg  [10:0]  portOffsets_1_29;
+  reg  [10:0]  portOffsets_1_30;
+  reg  [10:0]  portOffsets_1_31;
+  reg  [10:0]  incl_REG;
+  reg  [10:0]  incl_REG_1;
+  reg  [10:0]  incl_REG_2;
+  reg  [10:0]  incl_REG_3;
+  reg  [10:0]  incl_REG_4;
+  reg  [10:0]  incl_REG_5;
+  reg  [10:0]  incl_REG_6;
+  reg  [10:0]  incl_REG_7;
+  reg  [10:0]  incl_REG_8;
+  reg  [10:0]  incl_REG_9;
+  reg  [10:0]  incl_REG_10;
+  reg  [10:0]  incl_REG_11;
+  reg  [10:0]  incl_REG_12;
+  reg  [10:0]  incl_REG_13;
+  reg  [10:0]  incl_REG_14;
+  reg  [10:0]  incl_REG_15;
+  reg  [10:0]  incl_REG_16;
+  reg  [10:0]  incl_REG_17;
+  reg  [10:0]  incl_REG_18;
+  reg  [10:0]  incl_REG_19;
+  reg  [10:0]  incl_REG_20;
+  reg  [10:0]  incl_REG_21;
+  reg  [10:0]  incl_REG_22;
+  reg  [10:0]  incl_REG_23;
+  reg  [10:0]  incl_REG_24;
+  reg  [10:0]  incl_REG_25;
+  reg  [10:0]  incl_REG_26;
+  reg  [10:0]  incl_REG_27;
+  reg  [10:0]  incl_REG_28;
+  reg  [10:0]  incl_REG_29;
+  reg  [10:0]  incl_REG_30;
+  reg  [10:0]  incl_REG_31;
+  reg  [10:0]  incl_REG_32;
+  reg  [10:0]  incl_REG_33;
+  reg  [10:0]  incl_REG_34;
+  reg  [10:0]  incl_REG_35;
+  reg  [10:0]  incl_REG_36;
+  reg  [10:0]  incl_REG_37;
+  reg  [10:0]  incl_REG_38;
+  reg  [10:0]  incl_REG_39;
+  reg  [10:0]  incl_REG_40;
+  reg  [10:0]  incl_REG_41;
+  reg  [10:0]  incl_REG_42;
+  reg  [10:0]  incl_REG_43;
+  reg  [10:0]  incl_REG_44;
+  reg  [10:0]  incl_REG_45;
+  reg  [10:0]  incl_REG_46;
+  reg  [10:0]  incl_REG_47;
+  reg  [10:0]  incl_REG_48;
+  reg  [10:0]  incl_REG_49;
+  reg  [10:0]  incl_REG_50;
+  reg  [10:0]  incl_REG_51;
+  reg  [10:0]  incl_REG_52;
+  reg  [10:0]  incl_REG_53;
+  reg  [10:0]  incl_REG_54;
+  reg  [10:0]  incl_REG_55;
+  reg  [10:0]  incl_REG_56;
+  reg  [10:0]  incl_REG_57;
+  reg  [10:0]  incl_REG_58;
+  reg  [10:0]  incl_REG_59;
+  reg  [10:0]  incl_REG_60;
+  reg  [10:0]  incl_REG_61;
+  reg  [10:0]  incl_REG_62;
+  reg  [10:0]  incl_REG_63;
+  reg  [10:0]  incl_REG_64;
+  reg  [10:0]  incl_REG_65;
+  reg  [10:0]  incl_REG_66;
+  reg  [10:0]  incl_REG_67;
+  reg  [10:0]  incl_REG_68;
+  reg  [10:0]  incl_REG_69;
+  reg  [10:0]  incl_REG_70;
+  reg  [10:0]  incl_REG_71;
+  reg  [10:0]  incl_REG_72;
+  reg  [10:0]  incl_REG_73;
+  reg  [10:0]  incl_REG_74;
+  reg  [10:0]  incl_REG_75;
+  reg  [10:0]  incl_REG_76;
+  reg  [10:0]  incl_REG_77;
+  reg  [10:0]  incl_REG_78;
+  reg  [10:0]  incl_REG_79;
+  reg  [10:0]  incl_REG_80;
+  reg  [10:0]  incl_REG_81;
+  reg  [10:0]  incl_REG_82;
+  reg  [10:0]  incl_REG_83;
+  reg  [10:0]  incl_REG_84;
+  reg  [10:0]  incl_REG_85;
+  reg  [10:0]  incl_REG_86;
+  reg  [10:0]  incl_REG_87;
+  reg  [10:0]  incl_REG_88;
+  reg  [10:0]  incl_REG_89;
+  reg  [10:0]  incl_REG_90;
+  reg  [10:0]  incl_REG_91;
+  reg  [10:0]  incl_REG_92;
+  reg  [10:0]  incl_REG_93;
+  reg  [10:0]  incl_REG_94;
+  reg  [10:0]  incl_REG_95;
+  reg  [10:0]  incl_REG_96;
+  reg  [10:0]  incl_REG_97;
+  reg  [10:0]  incl_REG_98;
+  reg  [10:0]  incl_REG_99;
+  reg  [10:0]  incl_REG_100;
+  reg  [10:0]  incl_REG_101;
+  reg  [10:0]  incl_REG_102;
+  reg  [10:0]  incl_REG_103;
+  reg  [10:0]  incl_REG_104;
+  reg  [10:0]  incl_REG_105;
+  reg  [10:0]  incl_REG_106;
+  reg  [10:0]  incl_REG_107;
+  reg  [10:0]  incl_REG_108;
+  reg  [10:0]  incl_REG_109;
+  reg  [10:0]  incl_REG_110;
+  reg  [10:0]  incl_REG_111;
+  reg  [10:0]  incl_REG_112;
+  reg  [10:0]  incl_REG_113;
+  reg  [10:0]  incl_REG_114;
+  reg  [10:0]  incl_REG_115;
+  reg  [10:0]  incl_REG_116;
+  reg  [10:0]  incl_REG_117;
+  reg  [10:0]  incl_REG_118;
+  reg  [10:0]  incl_REG_119;
+  reg  [10:0]  incl_REG_120;
+  reg  [10:0]  incl_REG_121;
+  reg  [10:0]  incl_REG_122;
+  reg  [10:0]  incl_REG_123;
+  reg  [10:0]  incl_REG_124;
+  reg  [10:0]  incl_REG_125;
+  reg  [10:0]  incl_REG_126;
+  reg  [10:0]  incl_REG_127;
+  reg  [10:0]  incl_REG_128;
+  reg  [10:0]  incl_REG_129;
+  reg  [10:0]  incl_REG_130;
+  reg  [10:0]  incl_REG_131;
+  reg  [10:0]  incl_REG_132;
+  reg  [10:0]  incl_REG_133;
+  reg  [10:0]  incl_REG_134;
+  reg  [10:0]  incl_REG_135;
+  reg  [10:0]  incl_REG_136;
+  reg  [10:0]  incl_REG_137;
+  reg  [10:0]  incl_REG_138;
+  reg  [10:0]  incl_REG_139;
+  reg  [10:0]  incl_REG_140;
+  reg  [10:0]  incl_REG_141;
+  reg  [10:0]  incl_REG_142;
+  reg  [10:0]  incl_REG_143;
+  reg  [10:0]  incl_REG_144;
+  reg  [10:0]  incl_REG_145;
+  reg  [10:0]  incl_REG_146;
+  reg  [10:0]  incl_REG_147;
+  reg  [10:0]  incl_REG_148;
+  reg  [10:0]  incl_REG_149;
+  reg  [10:0]  incl_REG_150;
+  reg  [10:0]  incl_REG_151;
+  reg  [10:0]  incl_REG_152;
+  reg  [10:0]  incl_REG_153;
+  reg  [10:0]  incl_REG_154;
+  reg  [10:0]  incl_REG_155;
+  reg  [10:0]  incl_REG_156;
+  reg  [10:0]  incl_REG_157;
+  reg  [10:0]  incl_REG_158;
+  reg  [10:0]  incl_REG_159;
+  reg  [10:0]  offsetsP_r_4_0;
+  reg  [10:0]  offsetsP_r_4_1;
+  reg  [10:0]  offsetsP_r_4_2;
+  reg  [10:0]  offsetsP_r_4_3;
+  reg  [10:0]  offsetsP_r_4_4;
+  reg  [10:0]  offsetsP_r_4_5;
+  reg  [10:0]  offsetsP_r_4_6;
+  reg  [10:0]  offsetsP_r_4_7;
+  reg  [10:0]  offsetsP_r_4_8;
+  reg  [10:0]  offsetsP_r_4_9;
+  reg  [10:0]  offsetsP_r_4_10;
+  reg  [10:0]  offsetsP_r_4_11;
+  reg  [10:0]  offsetsP_r_4_12;
+  reg  [10:0]  offsetsP_r_4_13;
+  reg  [10:0]  offsetsP_r_4_14;
+  reg  [10:0]  offsetsP_r_4_15;
+  reg  [10:0]  offsetsP_r_4_16;
+  reg  [10:0]  offsetsP_r_4_17;
+  reg  [10:0]  offsetsP_r_4_18;
+  reg  [10:0]  offsetsP_r_4_19;
+  reg  [10:0]  offsetsP_r_4_20;
+  reg  [10:0]  offsetsP_r_4_21;
+  reg  [10:0]  offsetsP_r_4_22;
+  reg  [10:0]  offsetsP_r_4_23;
+  reg  [10:0]  offsetsP_r_4_24;
+  reg  [10:0]  offsetsP_r_4_25;
+  reg  [10:0]  offsetsP_r_4_26;
+  reg  [10:0]  offsetsP_r_4_27;
+  reg  [10:0]  offsetsP_r_4_28;
+  reg  [10:0]  offsetsP_r_4_29;
+  reg  [10:0]  offsetsP_r_4_30;
+  reg  [10:0]  offsetsP_r_4_31;
+  reg  [10:0]  offsetsP_r_5_0;
+  reg  [10:0]  offsetsP_r_5_1;
+  reg  [10:0]  offsetsP_r_5_2;
+  reg  [10:0]  offsetsP_r_5_3;
+  reg  [10:0]  offsetsP_r_5_4;
+  reg  [10:0]  offsetsP_r_5_5;
+  reg  [10:0]  offsetsP_r_5_6;
+  reg  [10:0]  offsetsP_r_5_7;
+  reg  [10:0]  offsetsP_r_5_8;
+  reg  [10:0]  offsetsP_r_5_9;
+  reg  [10:0]  offsetsP_r_5_10;
+  reg  [10:0]  offsetsP_r_5_11;
+  reg  [10:0]  offsetsP_r_5_12;
+  reg  [10:0]  offsetsP_r_5_13;
+  reg  [10:0]  offsetsP_r_5_14;
+  reg  [10:0]  offsetsP_r_5_15;
+  reg  [10:0]  offsetsP_r_5_16;
+  reg  [10:0]  offsetsP_r_5_17;
+  reg  [10:0]  offsetsP_r_5_18;
+  reg  [10:0]  offsetsP_r_5_19;
+  reg  [10:0]  offsetsP_r_5_20;
+  reg  [10:0]  offsetsP_r_5_21;
+  reg  [10:0]  offsetsP_r_5_22;
+  reg  [10:0]  offsetsP_r_5_23;
+  reg  [10:0]  offsetsP_r_5_24;
+  reg  [10:0]  offsetsP_r_5_25;
+  reg  [10:0]  offsetsP_r_5_26;
+  reg  [10:0]  offsetsP_r_5_27;
+  reg  [10:0]  offsetsP_r_5_28;
+  reg  [10:0]  offsetsP_r_5_29;
+  reg  [10:0]  offsetsP_r_5_30;
+  reg  [10:0]  offsetsP_r_5_31;
+  reg  [10:0]  offsetsP_r_6_0;
+  reg  [10:0]  offsetsP_r_6_1;
+  reg  [10:0]  offsetsP_r_6_2;
+  reg  [10:0]  offsetsP_r_6_3;
+  reg  [10:0]  offsetsP_r_6_4;
+  reg  [10:0]  offsetsP_r_6_5;
+  reg  [10:0]  offsetsP_r_6_6;
+  reg  [10:0]  offsetsP_r_6_7;
+  reg  [10:0]  offsetsP_r_6_8;
+  reg  [10:0]  offsetsP_r_6_9;
+  reg  [10:0]  offsetsP_r_6_10;
+  reg  [10:0]  offsetsP_r_6_11;
+  reg  [10:0]  offsetsP_r_6_12;
+  reg  [10:0]  offsetsP_r_6_13;
+  reg  [10:0]  offsetsP_r_6_14;
+  reg  [10:0]  offsetsP_r_6_15;
+  reg  [10:0]  offsetsP_r_6_16;
+  reg  [10:0]  offsetsP_r_6_17;
+  reg  [10:0]  offsetsP_r_6_18;
+  reg  [10:0]  offsetsP_r_6_19;
+  reg  [10:0]  offsetsP_r_6_20;
+  reg  [10:0]  offsetsP_r_6_21;
+  reg  [10:0]  offsetsP_r_6_22;
+  reg  [10:0]  offsetsP_r_6_23;
+  reg  [10:0]  offsetsP_r_6_24;
+  reg  [10:0]  offsetsP_r_6_25;
+  reg  [10:0]  offsetsP_r_6_26;
+  reg  [10:0]  offsetsP_r_6_27;
+  reg  [10:0]  offsetsP_r_6_28;
+  reg  [10:0]  offsetsP_r_6_29;
+  reg  [10:0]  offsetsP_r_6_30;
+  reg  [10:0]  offsetsP_r_6_31;
+  reg  [10:0]  offsetsP_r_7_0;
+  reg  [10:0]  offsetsP_r_7_1;
+  reg  [10:0]  offsetsP_r_7_2;
+  reg  [10:0]  offsetsP_r_7_3;
+  reg  [10:0]  offsetsP_r_7_4;
+  reg  [10:0]  offsetsP_r_7_5;
+  reg  [10:0]  offsetsP_r_7_6;
+  reg  [10:0]  offsetsP_r_7_7;
+  reg  [10:0]  offsetsP_r_7_8;
+  reg  [10:0]  offsetsP_r_7_9;
+  reg  [10:0]  offsetsP_r_7_10;
+  reg  [10:0]  offsetsP_r_7_11;
+  reg  [10:0]  offsetsP_r_7_12;
+  reg  [10:0]  offsetsP_r_7_13;
+  reg  [10:0]  offsetsP_r_7_14;
+  reg  [10:0]  offsetsP_r_7_15;
+  reg  [10:0]  offsetsP_r_7_16;
+  reg  [10:0]  offsetsP_r_7_17;
+  reg  [10:0]  offsetsP_r_7_18;
+  reg  [10:0]  offsetsP_r_7_19;
+  reg  [10:0]  offsetsP_r_7_20;
+  reg  [10:0]  offsetsP_r_7_21;
+  reg  [10:0]  offsetsP_r_7_22;
+  reg  [10:0]  offsetsP_r_7_23;
+  reg  [10:0]  offsetsP_r_7_24;
+  reg  [10:0]  offsetsP_r_7_25;
+  reg  [10:0]  offsetsP_r_7_26;
+  reg  [10:0]  offsetsP_r_7_27;
+  reg  [10:0]  offsetsP_r_7_28;
+  reg  [10:0]  offsetsP_r_7_29;
+  reg  [10:0]  offsetsP_r_7_30;
+  reg  [10:0]  offsetsP_r_7_31;
+  reg  [10:0]  offsetsP_1_0;
+  reg  [10:0]  offsetsP_1_1;
+  reg  [10:0]  offsetsP_1_2;
+  reg  [10:0]  offsetsP_1_3;
+  reg  [10:0]  offsetsP_1_4;
+  reg  [10:0]  offsetsP_1_5;
+  reg  [10:0]  offsetsP_1_6;
+  reg  [10:0]  offsetsP_1_7;
+  reg  [10:0]  offsetsP_1_8;
+  reg  [10:0]  offsetsP_1_9;
+  reg  [10:0]  offsetsP_1_10;
+  reg  [10:0]  offsetsP_1_11;
+  reg  [10:0]  offsetsP_1_12;
+  reg  [10:0]  offsetsP_1_13;
+  reg  [10:0]  offsetsP_1_14;
+  reg  [10:0]  offsetsP_1_15;
+  reg  [10:0]  offsetsP_1_16;
+  reg  [10:0]  offsetsP_1_17;
+  reg  [10:0]  offsetsP_1_18;
+  reg  [10:0]  offsetsP_1_19;
+  reg  [10:0]  offsetsP_1_20;
+  reg  [10:0]  offsetsP_1_21;
+  reg  [10:0]  offsetsP_1_22;
+  reg  [10:0]  offsetsP_1_23;
+  reg  [10:0]  offsetsP_1_24;
+  reg  [10:0]  offsetsP_1_25;
+  reg  [10:0]  offsetsP_1_26;
+  reg  [10:0]  offsetsP_1_27;
+  reg  [10:0]  offsetsP_1_28;
+  reg  [10:0]  offsetsP_1_29;
+  reg  [10:0]  offsetsP_1_30;
+  reg  [10:0]  offsetsP_1_31;
+  reg  [10:0]  preStarts_0_1;
+  reg  [10:0]  preStarts_0_2;
+  reg  [10:0]  preStarts_0_3;
+  reg  [10:0]  preStarts_0_4;
+  reg  [10:0]  preStarts_0_5;
+  reg  [10:0]  preStarts_0_6;
+  reg  [10:0]  preStarts_0_7;
+  reg  [10:0]  preStarts_0_8;
+  reg  [10:0]  preStarts_0_9;
+  reg  [10:0]  preStarts_0_10;
+  reg  [10:0]  preStarts_0_11;
+  reg  [10:0]  preStarts_0_12;
+  reg  [10:0]  preStarts_0_13;
+  reg  [10:0]  preStarts_0_14;
+  reg  [10:0]  preStarts_0_15;
+  reg  [10:0]  preStarts_0_16;
+  reg  [10:0]  preStarts_0_17;
+  reg  [10:0]  preStarts_0_18;
+  reg  [10:0]  preStarts_0_19;
+  reg  [10:0]  preStarts_0_20;
+  reg  [10:0]  preStarts_0_21;
+  reg  [10:0]  preStarts_0_22;
+  reg  [10:0]  preStarts_0_23;
+  reg  [10:0]  preStarts_0_24;
+  reg  [10:0]  preStarts_0_25;
+  reg  [10:0]  preStarts_0_26;
+  reg  [10:0]  preStarts_0_27;
+  reg  [10:0]  preStarts_0_28;
+  reg  [10:0]  preStarts_0_29;
+  reg  [10:0]  preStarts_0_30;
+  reg  [10:0]  preStarts_0_31;
+  reg  [10:0]  preStarts_1_0;
+  reg  [10:0]  preStarts_1_1;
+  reg  [10:0]  preStarts_1_2;
+  reg  [10:0]  preStarts_1_3;
+  reg  [10:0]  preStarts_1_4;
+  reg  [10:0]  preStarts_1_5;
+  reg  [10:0]  preStarts_1_6;
+  reg  [10:0]  preStarts_1_7;
+  reg  [10:0]  preStarts_1_8;
+  reg  [10:0]  preStarts_1_9;
+  reg  [10:0]  preStarts_1_10;
+  reg  [10:0]  preStarts_1_11;
+  reg  [10:0]  preStarts_1_12;
+  reg  [10:0]  preStarts_1_13;
+  reg  [10:0]  preStarts_1_14;
+  reg  [10:0]  preStarts_1_15;
+  reg  [10:0]  preStarts_1_16;
+  reg  [10:0]  preStarts_1_17;
+  reg  [10:0]  preStarts_1_18;
+  reg  [10:0]  preStarts_1_19;
+  reg  [10:0]  preStarts_1_20;
+  reg  [10:0]  preStarts_1_21;
+  reg  [10:0]  preStarts_1_22;
+  reg  [10:0]  preStarts_1_23;
+  reg  [10:0]  preStarts_1_24;
+  reg  [10:0]  preStarts_1_25;
+  reg  [10:0]  preStarts_1_26;
+  reg  [10:0]  preStarts_1_27;
+  reg  [10:0]  preStarts_1_28;
+  reg  [10:0]  preStarts_1_29;
+  reg  [10:0]  preStarts_1_30;
+  reg  [10:0]  preStarts_1_31;
+  reg  [10:0]  preEnds_0;
+  reg  [10:0]  preEnds_1;
+  reg  [10:0]  preEnds_2;
+  reg  [10:0]  preEnds_3;
+  reg  [10:0]  preEnds_4;
+  reg  [10:0]  preEnds_5;
+  reg  [10:0]  preEnds_6;
+  reg  [10:0]  preEnds_7;
+  reg  [10:0]  preEnds_8;
+  reg  [10:0]  preEnds_9;
+  reg  [10:0]  preEnds_10;
+  reg  [10:0]  preEnds_11;
+  reg  [10:0]  preEnds_12;
+  reg  [10:0]  preEnds_13;
+  reg  [10:0]  preEnds_14;
+  reg  [10:0]  preEnds_15;
+  reg  [10:0]  preEnds_16;
+  reg  [10:0]  preEnds_17;
+  reg  [10:0]  preEnds_18;
+  reg  [10:0]  preEnds_19;
+  reg  [10:0]  preEnds_20;
+  reg  [10:0]  preEnds_21;
+  reg  [10:0]  preEnds_22;
+  reg  [10:0]  preEnds_23;
+  reg  [10:0]  preEnds_24;
+  reg  [10:0]  preEnds_25;
+  reg  [10:0]  preEnds_26;
+  reg  [10:0]  preEnds_27;
+  reg  [10:0]  preEnds_28;
+  reg  [10:0]  preEnds_29;
+  reg  [10:0]  preEnds_30;
+  reg  [10:0]  preEnds_31;
   wire         _io_in_1_ready_T = state == 2'h0;
   wire         _GEN = state == 2'h1;
   wire [351:0] ends =
-    {_inc_T_139,
-     starts_31,
-     starts_30,
-     starts_29,
-     starts_28,
-     starts_27,
-     starts_26,
-     starts_25,
-     starts_24,
-     starts_23,
-     starts_22,
-     starts_21,
-     starts_20,
-     starts_19,
-     starts_18,
-     starts_17,
-     starts_16,
-     starts_15,
-     starts_14,
-     starts_13,
-     starts_12,
-     starts_11,
-     starts_10,
-     starts_9,
-     starts_8,
-     starts_7,
-     starts_6,
-     starts_5,
-     starts_4,
-     starts_3,
-     starts_2,
-     starts_1};
+    {sum + preEnds_31,
+     sum + preEnds_30,
+     sum + preEnds_29,
+     sum + preEnds_28,
+     sum + preEnds_27,
+     sum + preEnds_26,
+     sum + preEnds_25,
+     sum + preEnds_24,
+     sum + preEnds_23,
+     sum + preEnds_22,
+     sum + preEnds_21,
+     sum + preEnds_20,
+     sum + preEnds_19,
+     sum + preEnds_18,
+     sum + preEnds_17,
+     sum + preEnds_16,
+     sum + preEnds_15,
+     sum + preEnds_14,
+     sum + preEnds_13,
+     sum + preEnds_12,
+     sum + preEnds_11,
+     sum + preEnds_10,
+     sum + preEnds_9,
+     sum + preEnds_8,
+     sum + preEnds_7,
+     sum + preEnds_6,
+     sum + preEnds_5,
+     sum + preEnds_4,
+     sum + preEnds_3,
+     sum + preEnds_2,
+     sum + preEnds_1,
+     sum + preEnds_0};
   wire         io_in_0_ready_0 = _io_in_1_ready_T & ~io_clear & ~io_prefix;
   wire         io_in_1_ready_0 = _io_in_1_ready_T & ~io_clear & ~io_prefix;
   wire         inRange = {1'h0, io_in_0_bits_bucket} < _used_T[13:0];
@@ -77559,7 +77969,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
   assign oldWord_30 = _GEN_0[340:330];
   assign oldWord_31 = _GEN_0[351:341];
   wire         place_0_valid = s1 & s1scatter;
-  wire         _GEN_1 = sumS1 | _GEN;
+  wire         _GEN_1 = sumApply | _GEN;
   wire         inRange_1 = {1'h0, io_in_1_bits_bucket} < _used_T[13:0];
   wire         _fire_T_1 = io_in_1_ready_0 & io_in_1_valid;
   wire         fire_1 = _fire_T_1 & inRange_1;
@@ -79990,14 +80400,14 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
       counted <= 11'h0;
       scattered <= 11'h0;
       bad <= 1'h0;
-      sumS1 <= 1'h0;
+      sumApply_REG <= 1'h0;
       s1 <= 1'h0;
       fwdValid <= 1'h0;
       s1_1 <= 1'h0;
       fwdValid_1 <= 1'h0;
     end
     else begin
-      if (sumS1 & sumLast | _GEN
+      if (sumApply & sumLast | _GEN
           & _walk_T_2 == (_used_T[13:5] == 9'h0 ? 9'h1 : _used_T[13:5]))
         state <= 2'h0;
       else if (_GEN_3)
@@ -80014,7 +80424,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
         scattered <= scattered + {9'h0, {1'h0, place_0_valid} + {1'h0, place_1_valid}};
       end
       bad <= _fire_T_1 & ~inRange_1 | _fire_T & ~inRange | ~_GEN_3 & bad;
-      sumS1 <= sumRead;
+      sumApply_REG <= sumRead;
       s1 <= fire;
       fwdValid <= s1;
       s1_1 <= fire_1;
@@ -80024,14 +80434,514 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
       walk <= _walk_T_2;
     else if (_GEN_3 | _GEN_4)
       walk <= 9'h0;
-    if (sumS1)
-      sum <= _inc_T_139;
+    if (sumApply)
+      sum <= sum + preEnds_31;
     else if (_GEN_3 | ~_GEN_4) begin
     end
     else
       sum <= 11'h0;
-    sumW <= walk[7:0];
-    sumLast <= _walk_T_2 == sumWords;
+    sumApply_r <= sumApply_REG;
+    sumApply_r_1 <= sumApply_r;
+    sumApply_r_2 <= sumApply_r_1;
+    sumApply_r_3 <= sumApply_r_2;
+    sumApply_r_4 <= sumApply_r_3;
+    sumApply_r_5 <= sumApply_r_4;
+    sumApply <= sumApply_r_5;
+    sumW_REG <= walk[7:0];
+    sumW_r <= sumW_REG;
+    sumW_r_1 <= sumW_r;
+    sumW_r_2 <= sumW_r_1;
+    sumW_r_3 <= sumW_r_2;
+    sumW_r_4 <= sumW_r_3;
+    sumW_r_5 <= sumW_r_4;
+    sumW <= sumW_r_5;
+    sumLast_REG <= _walk_T_2 == sumWords;
+    sumLast_r <= sumLast_REG;
+    sumLast_r_1 <= sumLast_r;
+    sumLast_r_2 <= sumLast_r_1;
+    sumLast_r_3 <= sumLast_r_2;
+    sumLast_r_4 <= sumLast_r_3;
+    sumLast_r_5 <= sumLast_r_4;
+    sumLast <= sumLast_r_5;
+    totals_0 <= _cursors_0_ext_R0_data[10:0] + _tables_0_ext_R0_data[10:0];
+    totals_1 <= _cursors_0_ext_R0_data[21:11] + _tables_0_ext_R0_data[21:11];
+    totals_2 <= _cursors_0_ext_R0_data[32:22] + _tables_0_ext_R0_data[32:22];
+    totals_3 <= _cursors_0_ext_R0_data[43:33] + _tables_0_ext_R0_data[43:33];
+    totals_4 <= _cursors_0_ext_R0_data[54:44] + _tables_0_ext_R0_data[54:44];
+    totals_5 <= _cursors_0_ext_R0_data[65:55] + _tables_0_ext_R0_data[65:55];
+    totals_6 <= _cursors_0_ext_R0_data[76:66] + _tables_0_ext_R0_data[76:66];
+    totals_7 <= _cursors_0_ext_R0_data[87:77] + _tables_0_ext_R0_data[87:77];
+    totals_8 <= _cursors_0_ext_R0_data[98:88] + _tables_0_ext_R0_data[98:88];
+    totals_9 <= _cursors_0_ext_R0_data[109:99] + _tables_0_ext_R0_data[109:99];
+    totals_10 <= _cursors_0_ext_R0_data[120:110] + _tables_0_ext_R0_data[120:110];
+    totals_11 <= _cursors_0_ext_R0_data[131:121] + _tables_0_ext_R0_data[131:121];
+    totals_12 <= _cursors_0_ext_R0_data[142:132] + _tables_0_ext_R0_data[142:132];
+    totals_13 <= _cursors_0_ext_R0_data[153:143] + _tables_0_ext_R0_data[153:143];
+    totals_14 <= _cursors_0_ext_R0_data[164:154] + _tables_0_ext_R0_data[164:154];
+    totals_15 <= _cursors_0_ext_R0_data[175:165] + _tables_0_ext_R0_data[175:165];
+    totals_16 <= _cursors_0_ext_R0_data[186:176] + _tables_0_ext_R0_data[186:176];
+    totals_17 <= _cursors_0_ext_R0_data[197:187] + _tables_0_ext_R0_data[197:187];
+    totals_18 <= _cursors_0_ext_R0_data[208:198] + _tables_0_ext_R0_data[208:198];
+    totals_19 <= _cursors_0_ext_R0_data[219:209] + _tables_0_ext_R0_data[219:209];
+    totals_20 <= _cursors_0_ext_R0_data[230:220] + _tables_0_ext_R0_data[230:220];
+    totals_21 <= _cursors_0_ext_R0_data[241:231] + _tables_0_ext_R0_data[241:231];
+    totals_22 <= _cursors_0_ext_R0_data[252:242] + _tables_0_ext_R0_data[252:242];
+    totals_23 <= _cursors_0_ext_R0_data[263:253] + _tables_0_ext_R0_data[263:253];
+    totals_24 <= _cursors_0_ext_R0_data[274:264] + _tables_0_ext_R0_data[274:264];
+    totals_25 <= _cursors_0_ext_R0_data[285:275] + _tables_0_ext_R0_data[285:275];
+    totals_26 <= _cursors_0_ext_R0_data[296:286] + _tables_0_ext_R0_data[296:286];
+    totals_27 <= _cursors_0_ext_R0_data[307:297] + _tables_0_ext_R0_data[307:297];
+    totals_28 <= _cursors_0_ext_R0_data[318:308] + _tables_0_ext_R0_data[318:308];
+    totals_29 <= _cursors_0_ext_R0_data[329:319] + _tables_0_ext_R0_data[329:319];
+    totals_30 <= _cursors_0_ext_R0_data[340:330] + _tables_0_ext_R0_data[340:330];
+    totals_31 <= _cursors_0_ext_R0_data[351:341] + _tables_0_ext_R0_data[351:341];
+    portOffsets_1_0 <= _cursors_0_ext_R0_data[10:0];
+    portOffsets_1_1 <= _cursors_0_ext_R0_data[21:11];
+    portOffsets_1_2 <= _cursors_0_ext_R0_data[32:22];
+    portOffsets_1_3 <= _cursors_0_ext_R0_data[43:33];
+    portOffsets_1_4 <= _cursors_0_ext_R0_data[54:44];
+    portOffsets_1_5 <= _cursors_0_ext_R0_data[65:55];
+    portOffsets_1_6 <= _cursors_0_ext_R0_data[76:66];
+    portOffsets_1_7 <= _cursors_0_ext_R0_data[87:77];
+    portOffsets_1_8 <= _cursors_0_ext_R0_data[98:88];
+    portOffsets_1_9 <= _cursors_0_ext_R0_data[109:99];
+    portOffsets_1_10 <= _cursors_0_ext_R0_data[120:110];
+    portOffsets_1_11 <= _cursors_0_ext_R0_data[131:121];
+    portOffsets_1_12 <= _cursors_0_ext_R0_data[142:132];
+    portOffsets_1_13 <= _cursors_0_ext_R0_data[153:143];
+    portOffsets_1_14 <= _cursors_0_ext_R0_data[164:154];
+    portOffsets_1_15 <= _cursors_0_ext_R0_data[175:165];
+    portOffsets_1_16 <= _cursors_0_ext_R0_data[186:176];
+    portOffsets_1_17 <= _cursors_0_ext_R0_data[197:187];
+    portOffsets_1_18 <= _cursors_0_ext_R0_data[208:198];
+    portOffsets_1_19 <= _cursors_0_ext_R0_data[219:209];
+    portOffsets_1_20 <= _cursors_0_ext_R0_data[230:220];
+    portOffsets_1_21 <= _cursors_0_ext_R0_data[241:231];
+    portOffsets_1_22 <= _cursors_0_ext_R0_data[252:242];
+    portOffsets_1_23 <= _cursors_0_ext_R0_data[263:253];
+    portOffsets_1_24 <= _cursors_0_ext_R0_data[274:264];
+    portOffsets_1_25 <= _cursors_0_ext_R0_data[285:275];
+    portOffsets_1_26 <= _cursors_0_ext_R0_data[296:286];
+    portOffsets_1_27 <= _cursors_0_ext_R0_data[307:297];
+    portOffsets_1_28 <= _cursors_0_ext_R0_data[318:308];
+    portOffsets_1_29 <= _cursors_0_ext_R0_data[329:319];
+    portOffsets_1_30 <= _cursors_0_ext_R0_data[340:330];
+    portOffsets_1_31 <= _cursors_0_ext_R0_data[351:341];
+    incl_REG <= totals_0;
+    incl_REG_1 <= totals_0 + totals_1;
+    incl_REG_2 <= totals_1 + totals_2;
+    incl_REG_3 <= totals_2 + totals_3;
+    incl_REG_4 <= totals_3 + totals_4;
+    incl_REG_5 <= totals_4 + totals_5;
+    incl_REG_6 <= totals_5 + totals_6;
+    incl_REG_7 <= totals_6 + totals_7;
+    incl_REG_8 <= totals_7 + totals_8;
+    incl_REG_9 <= totals_8 + totals_9;
+    incl_REG_10 <= totals_9 + totals_10;
+    incl_REG_11 <= totals_10 + totals_11;
+    incl_REG_12 <= totals_11 + totals_12;
+    incl_REG_13 <= totals_12 + totals_13;
+    incl_REG_14 <= totals_13 + totals_14;
+    incl_REG_15 <= totals_14 + totals_15;
+    incl_REG_16 <= totals_15 + totals_16;
+    incl_REG_17 <= totals_16 + totals_17;
+    incl_REG_18 <= totals_17 + totals_18;
+    incl_REG_19 <= totals_18 + totals_19;
+    incl_REG_20 <= totals_19 + totals_20;
+    incl_REG_21 <= totals_20 + totals_21;
+    incl_REG_22 <= totals_21 + totals_22;
+    incl_REG_23 <= totals_22 + totals_23;
+    incl_REG_24 <= totals_23 + totals_24;
+    incl_REG_25 <= totals_24 + totals_25;
+    incl_REG_26 <= totals_25 + totals_26;
+    incl_REG_27 <= totals_26 + totals_27;
+    incl_REG_28 <= totals_27 + totals_28;
+    incl_REG_29 <= totals_28 + totals_29;
+    incl_REG_30 <= totals_29 + totals_30;
+    incl_REG_31 <= totals_30 + totals_31;
+    incl_REG_32 <= incl_REG;
+    incl_REG_33 <= incl_REG_1;
+    incl_REG_34 <= incl_REG + incl_REG_2;
+    incl_REG_35 <= incl_REG_1 + incl_REG_3;
+    incl_REG_36 <= incl_REG_2 + incl_REG_4;
+    incl_REG_37 <= incl_REG_3 + incl_REG_5;
+    incl_REG_38 <= incl_REG_4 + incl_REG_6;
+    incl_REG_39 <= incl_REG_5 + incl_REG_7;
+    incl_REG_40 <= incl_REG_6 + incl_REG_8;
+    incl_REG_41 <= incl_REG_7 + incl_REG_9;
+    incl_REG_42 <= incl_REG_8 + incl_REG_10;
+    incl_REG_43 <= incl_REG_9 + incl_REG_11;
+    incl_REG_44 <= incl_REG_10 + incl_REG_12;
+    incl_REG_45 <= incl_REG_11 + incl_REG_13;
+    incl_REG_46 <= incl_REG_12 + incl_REG_14;
+    incl_REG_47 <= incl_REG_13 + incl_REG_15;
+    incl_REG_48 <= incl_REG_14 + incl_REG_16;
+    incl_REG_49 <= incl_REG_15 + incl_REG_17;
+    incl_REG_50 <= incl_REG_16 + incl_REG_18;
+    incl_REG_51 <= incl_REG_17 + incl_REG_19;
+    incl_REG_52 <= incl_REG_18 + incl_REG_20;
+    incl_REG_53 <= incl_REG_19 + incl_REG_21;
+    incl_REG_54 <= incl_REG_20 + incl_REG_22;
+    incl_REG_55 <= incl_REG_21 + incl_REG_23;
+    incl_REG_56 <= incl_REG_22 + incl_REG_24;
+    incl_REG_57 <= incl_REG_23 + incl_REG_25;
+    incl_REG_58 <= incl_REG_24 + incl_REG_26;
+    incl_REG_59 <= incl_REG_25 + incl_REG_27;
+    incl_REG_60 <= incl_REG_26 + incl_REG_28;
+    incl_REG_61 <= incl_REG_27 + incl_REG_29;
+    incl_REG_62 <= incl_REG_28 + incl_REG_30;
+    incl_REG_63 <= incl_REG_29 + incl_REG_31;
+    incl_REG_64 <= incl_REG_32;
+    incl_REG_65 <= incl_REG_33;
+    incl_REG_66 <= incl_REG_34;
+    incl_REG_67 <= incl_REG_35;
+    incl_REG_68 <= incl_REG_32 + incl_REG_36;
+    incl_REG_69 <= incl_REG_33 + incl_REG_37;
+    incl_REG_70 <= incl_REG_34 + incl_REG_38;
+    incl_REG_71 <= incl_REG_35 + incl_REG_39;
+    incl_REG_72 <= incl_REG_36 + incl_REG_40;
+    incl_REG_73 <= incl_REG_37 + incl_REG_41;
+    incl_REG_74 <= incl_REG_38 + incl_REG_42;
+    incl_REG_75 <= incl_REG_39 + incl_REG_43;
+    incl_REG_76 <= incl_REG_40 + incl_REG_44;
+    incl_REG_77 <= incl_REG_41 + incl_REG_45;
+    incl_REG_78 <= incl_REG_42 + incl_REG_46;
+    incl_REG_79 <= incl_REG_43 + incl_REG_47;
+    incl_REG_80 <= incl_REG_44 + incl_REG_48;
+    incl_REG_81 <= incl_REG_45 + incl_REG_49;
+    incl_REG_82 <= incl_REG_46 + incl_REG_50;
+    incl_REG_83 <= incl_REG_47 + incl_REG_51;
+    incl_REG_84 <= incl_REG_48 + incl_REG_52;
+    incl_REG_85 <= incl_REG_49 + incl_REG_53;
+    incl_REG_86 <= incl_REG_50 + incl_REG_54;
+    incl_REG_87 <= incl_REG_51 + incl_REG_55;
+    incl_REG_88 <= incl_REG_52 + incl_REG_56;
+    incl_REG_89 <= incl_REG_53 + incl_REG_57;
+    incl_REG_90 <= incl_REG_54 + incl_REG_58;
+    incl_REG_91 <= incl_REG_55 + incl_REG_59;
+    incl_REG_92 <= incl_REG_56 + incl_REG_60;
+    incl_REG_93 <= incl_REG_57 + incl_REG_61;
+    incl_REG_94 <= incl_REG_58 + incl_REG_62;
+    incl_REG_95 <= incl_REG_59 + incl_REG_63;
+    incl_REG_96 <= incl_REG_64;
+    incl_REG_97 <= incl_REG_65;
+    incl_REG_98 <= incl_REG_66;
+    incl_REG_99 <= incl_REG_67;
+    incl_REG_100 <= incl_REG_68;
+    incl_REG_101 <= incl_REG_69;
+    incl_REG_102 <= incl_REG_70;
+    incl_REG_103 <= incl_REG_71;
+    incl_REG_104 <= incl_REG_64 + incl_REG_72;
+    incl_REG_105 <= incl_REG_65 + incl_REG_73;
+    incl_REG_106 <= incl_REG_66 + incl_REG_74;
+    incl_REG_107 <= incl_REG_67 + incl_REG_75;
+    incl_REG_108 <= incl_REG_68 + incl_REG_76;
+    incl_REG_109 <= incl_REG_69 + incl_REG_77;
+    incl_REG_110 <= incl_REG_70 + incl_REG_78;
+    incl_REG_111 <= incl_REG_71 + incl_REG_79;
+    incl_REG_112 <= incl_REG_72 + incl_REG_80;
+    incl_REG_113 <= incl_REG_73 + incl_REG_81;
+    incl_REG_114 <= incl_REG_74 + incl_REG_82;
+    incl_REG_115 <= incl_REG_75 + incl_REG_83;
+    incl_REG_116 <= incl_REG_76 + incl_REG_84;
+    incl_REG_117 <= incl_REG_77 + incl_REG_85;
+    incl_REG_118 <= incl_REG_78 + incl_REG_86;
+    incl_REG_119 <= incl_REG_79 + incl_REG_87;
+    incl_REG_120 <= incl_REG_80 + incl_REG_88;
+    incl_REG_121 <= incl_REG_81 + incl_REG_89;
+    incl_REG_122 <= incl_REG_82 + incl_REG_90;
+    incl_REG_123 <= incl_REG_83 + incl_REG_91;
+    incl_REG_124 <= incl_REG_84 + incl_REG_92;
+    incl_REG_125 <= incl_REG_85 + incl_REG_93;
+    incl_REG_126 <= incl_REG_86 + incl_REG_94;
+    incl_REG_127 <= incl_REG_87 + incl_REG_95;
+    incl_REG_128 <= incl_REG_96;
+    incl_REG_129 <= incl_REG_97;
+    incl_REG_130 <= incl_REG_98;
+    incl_REG_131 <= incl_REG_99;
+    incl_REG_132 <= incl_REG_100;
+    incl_REG_133 <= incl_REG_101;
+    incl_REG_134 <= incl_REG_102;
+    incl_REG_135 <= incl_REG_103;
+    incl_REG_136 <= incl_REG_104;
+    incl_REG_137 <= incl_REG_105;
+    incl_REG_138 <= incl_REG_106;
+    incl_REG_139 <= incl_REG_107;
+    incl_REG_140 <= incl_REG_108;
+    incl_REG_141 <= incl_REG_109;
+    incl_REG_142 <= incl_REG_110;
+    incl_REG_143 <= incl_REG_111;
+    incl_REG_144 <= incl_REG_96 + incl_REG_112;
+    incl_REG_145 <= incl_REG_97 + incl_REG_113;
+    incl_REG_146 <= incl_REG_98 + incl_REG_114;
+    incl_REG_147 <= incl_REG_99 + incl_REG_115;
+    incl_REG_148 <= incl_REG_100 + incl_REG_116;
+    incl_REG_149 <= incl_REG_101 + incl_REG_117;
+    incl_REG_150 <= incl_REG_102 + incl_REG_118;
+    incl_REG_151 <= incl_REG_103 + incl_REG_119;
+    incl_REG_152 <= incl_REG_104 + incl_REG_120;
+    incl_REG_153 <= incl_REG_105 + incl_REG_121;
+    incl_REG_154 <= incl_REG_106 + incl_REG_122;
+    incl_REG_155 <= incl_REG_107 + incl_REG_123;
+    incl_REG_156 <= incl_REG_108 + incl_REG_124;
+    incl_REG_157 <= incl_REG_109 + incl_REG_125;
+    incl_REG_158 <= incl_REG_110 + incl_REG_126;
+    incl_REG_159 <= incl_REG_111 + incl_REG_127;
+    offsetsP_r_4_0 <= portOffsets_1_0;
+    offsetsP_r_4_1 <= portOffsets_1_1;
+    offsetsP_r_4_2 <= portOffsets_1_2;
+    offsetsP_r_4_3 <= portOffsets_1_3;
+    offsetsP_r_4_4 <= portOffsets_1_4;
+    offsetsP_r_4_5 <= portOffsets_1_5;
+    offsetsP_r_4_6 <= portOffsets_1_6;
+    offsetsP_r_4_7 <= portOffsets_1_7;
+    offsetsP_r_4_8 <= portOffsets_1_8;
+    offsetsP_r_4_9 <= portOffsets_1_9;
+    offsetsP_r_4_10 <= portOffsets_1_10;
+    offsetsP_r_4_11 <= portOffsets_1_11;
+    offsetsP_r_4_12 <= portOffsets_1_12;
+    offsetsP_r_4_13 <= portOffsets_1_13;
+    offsetsP_r_4_14 <= portOffsets_1_14;
+    offsetsP_r_4_15 <= portOffsets_1_15;
+    offsetsP_r_4_16 <= portOffsets_1_16;
+    offsetsP_r_4_17 <= portOffsets_1_17;
+    offsetsP_r_4_18 <= portOffsets_1_18;
+    offsetsP_r_4_19 <= portOffsets_1_19;
+    offsetsP_r_4_20 <= portOffsets_1_20;
+    offsetsP_r_4_21 <= portOffsets_1_21;
+    offsetsP_r_4_22 <= portOffsets_1_22;
+    offsetsP_r_4_23 <= portOffsets_1_23;
+    offsetsP_r_4_24 <= portOffsets_1_24;
+    offsetsP_r_4_25 <= portOffsets_1_25;
+    offsetsP_r_4_26 <= portOffsets_1_26;
+    offsetsP_r_4_27 <= portOffsets_1_27;
+    offsetsP_r_4_28 <= portOffsets_1_28;
+    offsetsP_r_4_29 <= portOffsets_1_29;
+    offsetsP_r_4_30 <= portOffsets_1_30;
+    offsetsP_r_4_31 <= portOffsets_1_31;
+    offsetsP_r_5_0 <= offsetsP_r_4_0;
+    offsetsP_r_5_1 <= offsetsP_r_4_1;
+    offsetsP_r_5_2 <= offsetsP_r_4_2;
+    offsetsP_r_5_3 <= offsetsP_r_4_3;
+    offsetsP_r_5_4 <= offsetsP_r_4_4;
+    offsetsP_r_5_5 <= offsetsP_r_4_5;
+    offsetsP_r_5_6 <= offsetsP_r_4_6;
+    offsetsP_r_5_7 <= offsetsP_r_4_7;
+    offsetsP_r_5_8 <= offsetsP_r_4_8;
+    offsetsP_r_5_9 <= offsetsP_r_4_9;
+    offsetsP_r_5_10 <= offsetsP_r_4_10;
+    offsetsP_r_5_11 <= offsetsP_r_4_11;
+    offsetsP_r_5_12 <= offsetsP_r_4_12;
+    offsetsP_r_5_13 <= offsetsP_r_4_13;
+    offsetsP_r_5_14 <= offsetsP_r_4_14;
+    offsetsP_r_5_15 <= offsetsP_r_4_15;
+    offsetsP_r_5_16 <= offsetsP_r_4_16;
+    offsetsP_r_5_17 <= offsetsP_r_4_17;
+    offsetsP_r_5_18 <= offsetsP_r_4_18;
+    offsetsP_r_5_19 <= offsetsP_r_4_19;
+    offsetsP_r_5_20 <= offsetsP_r_4_20;
+    offsetsP_r_5_21 <= offsetsP_r_4_21;
+    offsetsP_r_5_22 <= offsetsP_r_4_22;
+    offsetsP_r_5_23 <= offsetsP_r_4_23;
+    offsetsP_r_5_24 <= offsetsP_r_4_24;
+    offsetsP_r_5_25 <= offsetsP_r_4_25;
+    offsetsP_r_5_26 <= offsetsP_r_4_26;
+    offsetsP_r_5_27 <= offsetsP_r_4_27;
+    offsetsP_r_5_28 <= offsetsP_r_4_28;
+    offsetsP_r_5_29 <= offsetsP_r_4_29;
+    offsetsP_r_5_30 <= offsetsP_r_4_30;
+    offsetsP_r_5_31 <= offsetsP_r_4_31;
+    offsetsP_r_6_0 <= offsetsP_r_5_0;
+    offsetsP_r_6_1 <= offsetsP_r_5_1;
+    offsetsP_r_6_2 <= offsetsP_r_5_2;
+    offsetsP_r_6_3 <= offsetsP_r_5_3;
+    offsetsP_r_6_4 <= offsetsP_r_5_4;
+    offsetsP_r_6_5 <= offsetsP_r_5_5;
+    offsetsP_r_6_6 <= offsetsP_r_5_6;
+    offsetsP_r_6_7 <= offsetsP_r_5_7;
+    offsetsP_r_6_8 <= offsetsP_r_5_8;
+    offsetsP_r_6_9 <= offsetsP_r_5_9;
+    offsetsP_r_6_10 <= offsetsP_r_5_10;
+    offsetsP_r_6_11 <= offsetsP_r_5_11;
+    offsetsP_r_6_12 <= offsetsP_r_5_12;
+    offsetsP_r_6_13 <= offsetsP_r_5_13;
+    offsetsP_r_6_14 <= offsetsP_r_5_14;
+    offsetsP_r_6_15 <= offsetsP_r_5_15;
+    offsetsP_r_6_16 <= offsetsP_r_5_16;
+    offsetsP_r_6_17 <= offsetsP_r_5_17;
+    offsetsP_r_6_18 <= offsetsP_r_5_18;
+    offsetsP_r_6_19 <= offsetsP_r_5_19;
+    offsetsP_r_6_20 <= offsetsP_r_5_20;
+    offsetsP_r_6_21 <= offsetsP_r_5_21;
+    offsetsP_r_6_22 <= offsetsP_r_5_22;
+    offsetsP_r_6_23 <= offsetsP_r_5_23;
+    offsetsP_r_6_24 <= offsetsP_r_5_24;
+    offsetsP_r_6_25 <= offsetsP_r_5_25;
+    offsetsP_r_6_26 <= offsetsP_r_5_26;
+    offsetsP_r_6_27 <= offsetsP_r_5_27;
+    offsetsP_r_6_28 <= offsetsP_r_5_28;
+    offsetsP_r_6_29 <= offsetsP_r_5_29;
+    offsetsP_r_6_30 <= offsetsP_r_5_30;
+    offsetsP_r_6_31 <= offsetsP_r_5_31;
+    offsetsP_r_7_0 <= offsetsP_r_6_0;
+    offsetsP_r_7_1 <= offsetsP_r_6_1;
+    offsetsP_r_7_2 <= offsetsP_r_6_2;
+    offsetsP_r_7_3 <= offsetsP_r_6_3;
+    offsetsP_r_7_4 <= offsetsP_r_6_4;
+    offsetsP_r_7_5 <= offsetsP_r_6_5;
+    offsetsP_r_7_6 <= offsetsP_r_6_6;
+    offsetsP_r_7_7 <= offsetsP_r_6_7;
+    offsetsP_r_7_8 <= offsetsP_r_6_8;
+    offsetsP_r_7_9 <= offsetsP_r_6_9;
+    offsetsP_r_7_10 <= offsetsP_r_6_10;
+    offsetsP_r_7_11 <= offsetsP_r_6_11;
+    offsetsP_r_7_12 <= offsetsP_r_6_12;
+    offsetsP_r_7_13 <= offsetsP_r_6_13;
+    offsetsP_r_7_14 <= offsetsP_r_6_14;
+    offsetsP_r_7_15 <= offsetsP_r_6_15;
+    offsetsP_r_7_16 <= offsetsP_r_6_16;
+    offsetsP_r_7_17 <= offsetsP_r_6_17;
+    offsetsP_r_7_18 <= offsetsP_r_6_18;
+    offsetsP_r_7_19 <= offsetsP_r_6_19;
+    offsetsP_r_7_20 <= offsetsP_r_6_20;
+    offsetsP_r_7_21 <= offsetsP_r_6_21;
+    offsetsP_r_7_22 <= offsetsP_r_6_22;
+    offsetsP_r_7_23 <= offsetsP_r_6_23;
+    offsetsP_r_7_24 <= offsetsP_r_6_24;
+    offsetsP_r_7_25 <= offsetsP_r_6_25;
+    offsetsP_r_7_26 <= offsetsP_r_6_26;
+    offsetsP_r_7_27 <= offsetsP_r_6_27;
+    offsetsP_r_7_28 <= offsetsP_r_6_28;
+    offsetsP_r_7_29 <= offsetsP_r_6_29;
+    offsetsP_r_7_30 <= offsetsP_r_6_30;
+    offsetsP_r_7_31 <= offsetsP_r_6_31;
+    offsetsP_1_0 <= offsetsP_r_7_0;
+    offsetsP_1_1 <= offsetsP_r_7_1;
+    offsetsP_1_2 <= offsetsP_r_7_2;
+    offsetsP_1_3 <= offsetsP_r_7_3;
+    offsetsP_1_4 <= offsetsP_r_7_4;
+    offsetsP_1_5 <= offsetsP_r_7_5;
+    offsetsP_1_6 <= offsetsP_r_7_6;
+    offsetsP_1_7 <= offsetsP_r_7_7;
+    offsetsP_1_8 <= offsetsP_r_7_8;
+    offsetsP_1_9 <= offsetsP_r_7_9;
+    offsetsP_1_10 <= offsetsP_r_7_10;
+    offsetsP_1_11 <= offsetsP_r_7_11;
+    offsetsP_1_12 <= offsetsP_r_7_12;
+    offsetsP_1_13 <= offsetsP_r_7_13;
+    offsetsP_1_14 <= offsetsP_r_7_14;
+    offsetsP_1_15 <= offsetsP_r_7_15;
+    offsetsP_1_16 <= offsetsP_r_7_16;
+    offsetsP_1_17 <= offsetsP_r_7_17;
+    offsetsP_1_18 <= offsetsP_r_7_18;
+    offsetsP_1_19 <= offsetsP_r_7_19;
+    offsetsP_1_20 <= offsetsP_r_7_20;
+    offsetsP_1_21 <= offsetsP_r_7_21;
+    offsetsP_1_22 <= offsetsP_r_7_22;
+    offsetsP_1_23 <= offsetsP_r_7_23;
+    offsetsP_1_24 <= offsetsP_r_7_24;
+    offsetsP_1_25 <= offsetsP_r_7_25;
+    offsetsP_1_26 <= offsetsP_r_7_26;
+    offsetsP_1_27 <= offsetsP_r_7_27;
+    offsetsP_1_28 <= offsetsP_r_7_28;
+    offsetsP_1_29 <= offsetsP_r_7_29;
+    offsetsP_1_30 <= offsetsP_r_7_30;
+    offsetsP_1_31 <= offsetsP_r_7_31;
+    preStarts_0_1 <= incl_REG_128;
+    preStarts_0_2 <= incl_REG_129;
+    preStarts_0_3 <= incl_REG_130;
+    preStarts_0_4 <= incl_REG_131;
+    preStarts_0_5 <= incl_REG_132;
+    preStarts_0_6 <= incl_REG_133;
+    preStarts_0_7 <= incl_REG_134;
+    preStarts_0_8 <= incl_REG_135;
+    preStarts_0_9 <= incl_REG_136;
+    preStarts_0_10 <= incl_REG_137;
+    preStarts_0_11 <= incl_REG_138;
+    preStarts_0_12 <= incl_REG_139;
+    preStarts_0_13 <= incl_REG_140;
+    preStarts_0_14 <= incl_REG_141;
+    preStarts_0_15 <= incl_REG_142;
+    preStarts_0_16 <= incl_REG_143;
+    preStarts_0_17 <= incl_REG_144;
+    preStarts_0_18 <= incl_REG_145;
+    preStarts_0_19 <= incl_REG_146;
+    preStarts_0_20 <= incl_REG_147;
+    preStarts_0_21 <= incl_REG_148;
+    preStarts_0_22 <= incl_REG_149;
+    preStarts_0_23 <= incl_REG_150;
+    preStarts_0_24 <= incl_REG_151;
+    preStarts_0_25 <= incl_REG_152;
+    preStarts_0_26 <= incl_REG_153;
+    preStarts_0_27 <= incl_REG_154;
+    preStarts_0_28 <= incl_REG_155;
+    preStarts_0_29 <= incl_REG_156;
+    preStarts_0_30 <= incl_REG_157;
+    preStarts_0_31 <= incl_REG_158;
+    preStarts_1_0 <= offsetsP_1_0;
+    preStarts_1_1 <= incl_REG_128 + offsetsP_1_1;
+    preStarts_1_2 <= incl_REG_129 + offsetsP_1_2;
+    preStarts_1_3 <= incl_REG_130 + offsetsP_1_3;
+    preStarts_1_4 <= incl_REG_131 + offsetsP_1_4;
+    preStarts_1_5 <= incl_REG_132 + offsetsP_1_5;
+    preStarts_1_6 <= incl_REG_133 + offsetsP_1_6;
+    preStarts_1_7 <= incl_REG_134 + offsetsP_1_7;
+    preStarts_1_8 <= incl_REG_135 + offsetsP_1_8;
+    preStarts_1_9 <= incl_REG_136 + offsetsP_1_9;
+    preStarts_1_10 <= incl_REG_137 + offsetsP_1_10;
+    preStarts_1_11 <= incl_REG_138 + offsetsP_1_11;
+    preStarts_1_12 <= incl_REG_139 + offsetsP_1_12;
+    preStarts_1_13 <= incl_REG_140 + offsetsP_1_13;
+    preStarts_1_14 <= incl_REG_141 + offsetsP_1_14;
+    preStarts_1_15 <= incl_REG_142 + offsetsP_1_15;
+    preStarts_1_16 <= incl_REG_143 + offsetsP_1_16;
+    preStarts_1_17 <= incl_REG_144 + offsetsP_1_17;
+    preStarts_1_18 <= incl_REG_145 + offsetsP_1_18;
+    preStarts_1_19 <= incl_REG_146 + offsetsP_1_19;
+    preStarts_1_20 <= incl_REG_147 + offsetsP_1_20;
+    preStarts_1_21 <= incl_REG_148 + offsetsP_1_21;
+    preStarts_1_22 <= incl_REG_149 + offsetsP_1_22;
+    preStarts_1_23 <= incl_REG_150 + offsetsP_1_23;
+    preStarts_1_24 <= incl_REG_151 + offsetsP_1_24;
+    preStarts_1_25 <= incl_REG_152 + offsetsP_1_25;
+    preStarts_1_26 <= incl_REG_153 + offsetsP_1_26;
+    preStarts_1_27 <= incl_REG_154 + offsetsP_1_27;
+    preStarts_1_28 <= incl_REG_155 + offsetsP_1_28;
+    preStarts_1_29 <= incl_REG_156 + offsetsP_1_29;
+    preStarts_1_30 <= incl_REG_157 + offsetsP_1_30;
+    preStarts_1_31 <= incl_REG_158 + offsetsP_1_31;
+    preEnds_0 <= incl_REG_128;
+    preEnds_1 <= incl_REG_129;
+    preEnds_2 <= incl_REG_130;
+    preEnds_3 <= incl_REG_131;
+    preEnds_4 <= incl_REG_132;
+    preEnds_5 <= incl_REG_133;
+    preEnds_6 <= incl_REG_134;
+    preEnds_7 <= incl_REG_135;
+    preEnds_8 <= incl_REG_136;
+    preEnds_9 <= incl_REG_137;
+    preEnds_10 <= incl_REG_138;
+    preEnds_11 <= incl_REG_139;
+    preEnds_12 <= incl_REG_140;
+    preEnds_13 <= incl_REG_141;
+    preEnds_14 <= incl_REG_142;
+    preEnds_15 <= incl_REG_143;
+    preEnds_16 <= incl_REG_144;
+    preEnds_17 <= incl_REG_145;
+    preEnds_18 <= incl_REG_146;
+    preEnds_19 <= incl_REG_147;
+    preEnds_20 <= incl_REG_148;
+    preEnds_21 <= incl_REG_149;
+    preEnds_22 <= incl_REG_150;
+    preEnds_23 <= incl_REG_151;
+    preEnds_24 <= incl_REG_152;
+    preEnds_25 <= incl_REG_153;
+    preEnds_26 <= incl_REG_154;
+    preEnds_27 <= incl_REG_155;
+    preEnds_28 <= incl_REG_156;
+    preEnds_29 <= incl_REG_157;
+    preEnds_30 <= incl_REG_158;
+    preEnds_31 <= incl_REG_159;
     if (fire) begin
       s1b <= io_in_0_bits_bucket;
       s1scatter <= io_in_0_bits_scatter;
@@ -80116,43 +81026,43 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R3_en   (1'h1),
     .R3_clk  (clock),
     .R3_data (_tables_0_ext_R3_data),
-    .W0_addr (sumS1 ? sumW : _GEN ? walk[7:0] : s1b_1[12:5]),
+    .W0_addr (sumApply ? sumW : _GEN ? walk[7:0] : s1b_1[12:5]),
     .W0_en   (_GEN_1 | s1_1),
     .W0_clk  (clock),
     .W0_data
-      (sumS1
-         ? {starts_31 + _cursors_0_ext_R0_data[351:341],
-            starts_30 + _cursors_0_ext_R0_data[340:330],
-            starts_29 + _cursors_0_ext_R0_data[329:319],
-            starts_28 + _cursors_0_ext_R0_data[318:308],
-            starts_27 + _cursors_0_ext_R0_data[307:297],
-            starts_26 + _cursors_0_ext_R0_data[296:286],
-            starts_25 + _cursors_0_ext_R0_data[285:275],
-            starts_24 + _cursors_0_ext_R0_data[274:264],
-            starts_23 + _cursors_0_ext_R0_data[263:253],
-            starts_22 + _cursors_0_ext_R0_data[252:242],
-            starts_21 + _cursors_0_ext_R0_data[241:231],
-            starts_20 + _cursors_0_ext_R0_data[230:220],
-            starts_19 + _cursors_0_ext_R0_data[219:209],
-            starts_18 + _cursors_0_ext_R0_data[208:198],
-            starts_17 + _cursors_0_ext_R0_data[197:187],
-            starts_16 + _cursors_0_ext_R0_data[186:176],
-            starts_15 + _cursors_0_ext_R0_data[175:165],
-            starts_14 + _cursors_0_ext_R0_data[164:154],
-            starts_13 + _cursors_0_ext_R0_data[153:143],
-            starts_12 + _cursors_0_ext_R0_data[142:132],
-            starts_11 + _cursors_0_ext_R0_data[131:121],
-            starts_10 + _cursors_0_ext_R0_data[120:110],
-            starts_9 + _cursors_0_ext_R0_data[109:99],
-            starts_8 + _cursors_0_ext_R0_data[98:88],
-            starts_7 + _cursors_0_ext_R0_data[87:77],
-            starts_6 + _cursors_0_ext_R0_data[76:66],
-            starts_5 + _cursors_0_ext_R0_data[65:55],
-            starts_4 + _cursors_0_ext_R0_data[54:44],
-            starts_3 + _cursors_0_ext_R0_data[43:33],
-            starts_2 + _cursors_0_ext_R0_data[32:22],
-            starts_1 + _cursors_0_ext_R0_data[21:11],
-            sum + _cursors_0_ext_R0_data[10:0]}
+      (sumApply
+         ? {sum + preStarts_1_31,
+            sum + preStarts_1_30,
+            sum + preStarts_1_29,
+            sum + preStarts_1_28,
+            sum + preStarts_1_27,
+            sum + preStarts_1_26,
+            sum + preStarts_1_25,
+            sum + preStarts_1_24,
+            sum + preStarts_1_23,
+            sum + preStarts_1_22,
+            sum + preStarts_1_21,
+            sum + preStarts_1_20,
+            sum + preStarts_1_19,
+            sum + preStarts_1_18,
+            sum + preStarts_1_17,
+            sum + preStarts_1_16,
+            sum + preStarts_1_15,
+            sum + preStarts_1_14,
+            sum + preStarts_1_13,
+            sum + preStarts_1_12,
+            sum + preStarts_1_11,
+            sum + preStarts_1_10,
+            sum + preStarts_1_9,
+            sum + preStarts_1_8,
+            sum + preStarts_1_7,
+            sum + preStarts_1_6,
+            sum + preStarts_1_5,
+            sum + preStarts_1_4,
+            sum + preStarts_1_3,
+            sum + preStarts_1_2,
+            sum + preStarts_1_1,
+            sum + preStarts_1_0}
          : _GEN ? 352'h0 : newWord_1)
   );
   mem_256x352_world tables_1_ext (
@@ -80165,7 +81075,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_1_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80179,7 +81089,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_2_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80193,7 +81103,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_3_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80207,7 +81117,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_4_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80221,7 +81131,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_5_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80235,7 +81145,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_6_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80249,7 +81159,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_7_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80263,7 +81173,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_8_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80277,7 +81187,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_9_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80291,7 +81201,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_10_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80305,7 +81215,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_11_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80319,7 +81229,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_12_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80333,7 +81243,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_13_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80347,7 +81257,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_14_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80361,7 +81271,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_clk  (clock),
     .R1_data (_tables_15_ext_R1_data),
     .W0_addr (sumW),
-    .W0_en   (sumS1),
+    .W0_en   (sumApply),
     .W0_clk  (clock),
     .W0_data (ends)
   );
@@ -80374,42 +81284,42 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     .R1_en   (fire),
     .R1_clk  (clock),
     .R1_data (_cursors_0_ext_R1_data),
-    .W0_addr (sumS1 ? sumW : _GEN ? walk[7:0] : s1b[12:5]),
+    .W0_addr (sumApply ? sumW : _GEN ? walk[7:0] : s1b[12:5]),
     .W0_en   (_GEN_1 | s1),
     .W0_clk  (clock),
     .W0_data
-      (sumS1
-         ? {starts_31,
-            starts_30,
-            starts_29,
-            starts_28,
-            starts_27,
-            starts_26,
-            starts_25,
-            starts_24,
-            starts_23,
-            starts_22,
-            starts_21,
-            starts_20,
-            starts_19,
-            starts_18,
-            starts_17,
-            starts_16,
-            starts_15,
-            starts_14,
-            starts_13,
-            starts_12,
-            starts_11,
-            starts_10,
-            starts_9,
-            starts_8,
-            starts_7,
-            starts_6,
-            starts_5,
-            starts_4,
-            starts_3,
-            starts_2,
-            starts_1,
+      (sumApply
+         ? {sum + preStarts_0_31,
+            sum + preStarts_0_30,
+            sum + preStarts_0_29,
+            sum + preStarts_0_28,
+            sum + preStarts_0_27,
+            sum + preStarts_0_26,
+            sum + preStarts_0_25,
+            sum + preStarts_0_24,
+            sum + preStarts_0_23,
+            sum + preStarts_0_22,
+            sum + preStarts_0_21,
+            sum + preStarts_0_20,
+            sum + preStarts_0_19,
+            sum + preStarts_0_18,
+            sum + preStarts_0_17,
+            sum + preStarts_0_16,
+            sum + preStarts_0_15,
+            sum + preStarts_0_14,
+            sum + preStarts_0_13,
+            sum + preStarts_0_12,
+            sum + preStarts_0_11,
+            sum + preStarts_0_10,
+            sum + preStarts_0_9,
+            sum + preStarts_0_8,
+            sum + preStarts_0_7,
+            sum + preStarts_0_6,
+            sum + preStarts_0_5,
+            sum + preStarts_0_4,
+            sum + preStarts_0_3,
+            sum + preStarts_0_2,
+            sum + preStarts_0_1,
             sum}
          : _GEN ? 352'h0 : newWord)
   );
@@ -81190,18 +82100,18 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_5x276_world(
-  input  [2:0]   R0_addr,
+module ram_14x276_world(
+  input  [3:0]   R0_addr,
   input          R0_en,
                  R0_clk,
   output [275:0] R0_data,
-  input  [2:0]   W0_addr,
+  input  [3:0]   W0_addr,
   input          W0_en,
                  W0_clk,
   input  [275:0] W0_data
 );
 
-  reg [275:0] Memory[0:4];
+  reg [275:0] Memory[0:13];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
@@ -81209,7 +82119,7 @@ module ram_5x276_world(
   assign R0_data = R0_en ? Memory[R0_addr] : 276'bx;
 endmodule
 
-module Queue5_StreamItem_world(
+module Queue14_StreamItem_world(
   input         clock,
                 reset,
   output        io_enq_ready,
@@ -81256,43 +82166,43 @@ module Queue5_StreamItem_world(
   output [2:0]  io_deq_bits_tag_off_0,
                 io_deq_bits_tag_off_1,
                 io_deq_bits_tag_off_2,
-                io_count
+  output [3:0]  io_count
 );
 
   wire [275:0] _ram_ext_R0_data;
-  reg  [2:0]   enq_ptr_value;
-  reg  [2:0]   deq_ptr_value;
+  reg  [3:0]   enq_ptr_value;
+  reg  [3:0]   deq_ptr_value;
   reg          maybe_full;
   wire         ptr_match = enq_ptr_value == deq_ptr_value;
   wire         empty = ptr_match & ~maybe_full;
   wire         full = ptr_match & maybe_full;
   wire         do_enq = ~full & io_enq_valid;
-  wire [2:0]   _ptr_diff_T = enq_ptr_value - deq_ptr_value;
+  wire [3:0]   _ptr_diff_T = enq_ptr_value - deq_ptr_value;
   wire         do_deq = io_deq_ready & ~empty;
   always @(posedge clock) begin
     if (reset) begin
-      enq_ptr_value <= 3'h0;
-      deq_ptr_value <= 3'h0;
+      enq_ptr_value <= 4'h0;
+      deq_ptr_value <= 4'h0;
       maybe_full <= 1'h0;
     end
     else begin
       if (do_enq) begin
-        if (enq_ptr_value == 3'h4)
-          enq_ptr_value <= 3'h0;
+        if (enq_ptr_value == 4'hD)
+          enq_ptr_value <= 4'h0;
         else
-          enq_ptr_value <= enq_ptr_value + 3'h1;
+          enq_ptr_value <= enq_ptr_value + 4'h1;
       end
       if (do_deq) begin
-        if (deq_ptr_value == 3'h4)
-          deq_ptr_value <= 3'h0;
+        if (deq_ptr_value == 4'hD)
+          deq_ptr_value <= 4'h0;
         else
-          deq_ptr_value <= deq_ptr_value + 3'h1;
+          deq_ptr_value <= deq_ptr_value + 4'h1;
       end
       if (~(do_enq == do_deq))
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_5x276_world ram_ext (
+  ram_14x276_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -81346,8 +82256,8 @@ module Queue5_StreamItem_world(
   assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[275:273];
   assign io_count =
     ptr_match
-      ? (maybe_full ? 3'h5 : 3'h0)
-      : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 3'h3 : _ptr_diff_T;
+      ? (maybe_full ? 4'hE : 4'h0)
+      : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 4'h2 : _ptr_diff_T;
 endmodule
 
 module KeyStream_world(
@@ -81412,7 +82322,7 @@ module KeyStream_world(
 
   wire        _q_io_enq_ready;
   wire        _q_io_deq_valid;
-  wire [2:0]  _q_io_count;
+  wire [3:0]  _q_io_count;
   reg  [12:0] cur_begin_0;
   reg  [12:0] cur_begin_1;
   reg  [12:0] cur_begin_2;
@@ -81443,6 +82353,15 @@ module KeyStream_world(
   reg  [2:0]  s1_tag_off_2;
   reg         kv_0;
   reg         kv_1;
+  reg         kv_2;
+  reg         kv_3;
+  reg         kv_4;
+  reg         kv_5;
+  reg         kv_6;
+  reg         kv_7;
+  reg         kv_8;
+  reg         kv_9;
+  reg         kv_10;
   reg  [1:0]  ks_0_group;
   reg  [12:0] ks_0_pos;
   reg         ks_0_tag_scan;
@@ -81465,9 +82384,119 @@ module KeyStream_world(
   reg  [2:0]  ks_1_tag_off_2;
   reg  [11:0] ks_1_item;
   reg         ks_1_mark;
+  reg  [1:0]  ks_2_group;
+  reg  [12:0] ks_2_pos;
+  reg         ks_2_tag_scan;
+  reg  [19:0] ks_2_tag_cell_0;
+  reg  [19:0] ks_2_tag_cell_1;
+  reg  [19:0] ks_2_tag_cell_2;
+  reg  [2:0]  ks_2_tag_off_0;
+  reg  [2:0]  ks_2_tag_off_1;
+  reg  [2:0]  ks_2_tag_off_2;
+  reg  [11:0] ks_2_item;
+  reg         ks_2_mark;
+  reg  [1:0]  ks_3_group;
+  reg  [12:0] ks_3_pos;
+  reg         ks_3_tag_scan;
+  reg  [19:0] ks_3_tag_cell_0;
+  reg  [19:0] ks_3_tag_cell_1;
+  reg  [19:0] ks_3_tag_cell_2;
+  reg  [2:0]  ks_3_tag_off_0;
+  reg  [2:0]  ks_3_tag_off_1;
+  reg  [2:0]  ks_3_tag_off_2;
+  reg  [11:0] ks_3_item;
+  reg         ks_3_mark;
+  reg  [1:0]  ks_4_group;
+  reg  [12:0] ks_4_pos;
+  reg         ks_4_tag_scan;
+  reg  [19:0] ks_4_tag_cell_0;
+  reg  [19:0] ks_4_tag_cell_1;
+  reg  [19:0] ks_4_tag_cell_2;
+  reg  [2:0]  ks_4_tag_off_0;
+  reg  [2:0]  ks_4_tag_off_1;
+  reg  [2:0]  ks_4_tag_off_2;
+  reg  [11:0] ks_4_item;
+  reg         ks_4_mark;
+  reg  [1:0]  ks_5_group;
+  reg  [12:0] ks_5_pos;
+  reg         ks_5_tag_scan;
+  reg  [19:0] ks_5_tag_cell_0;
+  reg  [19:0] ks_5_tag_cell_1;
+  reg  [19:0] ks_5_tag_cell_2;
+  reg  [2:0]  ks_5_tag_off_0;
+  reg  [2:0]  ks_5_tag_off_1;
+  reg  [2:0]  ks_5_tag_off_2;
+  reg  [11:0] ks_5_item;
+  reg         ks_5_mark;
+  reg  [1:0]  ks_6_group;
+  reg  [12:0] ks_6_pos;
+  reg         ks_6_tag_scan;
+  reg  [19:0] ks_6_tag_cell_0;
+  reg  [19:0] ks_6_tag_cell_1;
+  reg  [19:0] ks_6_tag_cell_2;
+  reg  [2:0]  ks_6_tag_off_0;
+  reg  [2:0]  ks_6_tag_off_1;
+  reg  [2:0]  ks_6_tag_off_2;
+  reg  [11:0] ks_6_item;
+  reg         ks_6_mark;
+  reg  [1:0]  ks_7_group;
+  reg  [12:0] ks_7_pos;
+  reg         ks_7_tag_scan;
+  reg  [19:0] ks_7_tag_cell_0;
+  reg  [19:0] ks_7_tag_cell_1;
+  reg  [19:0] ks_7_tag_cell_2;
+  reg  [2:0]  ks_7_tag_off_0;
+  reg  [2:0]  ks_7_tag_off_1;
+  reg  [2:0]  ks_7_tag_off_2;
+  reg  [11:0] ks_7_item;
+  reg         ks_7_mark;
+  reg  [1:0]  ks_8_group;
+  reg  [12:0] ks_8_pos;
+  reg         ks_8_tag_scan;
+  reg  [19:0] ks_8_tag_cell_0;
+  reg  [19:0] ks_8_tag_cell_1;
+  reg  [19:0] ks_8_tag_cell_2;
+  reg  [2:0]  ks_8_tag_off_0;
+  reg  [2:0]  ks_8_tag_off_1;
+  reg  [2:0]  ks_8_tag_off_2;
+  reg  [11:0] ks_8_item;
+  reg         ks_8_mark;
+  reg  [1:0]  ks_9_group;
+  reg  [12:0] ks_9_pos;
+  reg         ks_9_tag_scan;
+  reg  [19:0] ks_9_tag_cell_0;
+  reg  [19:0] ks_9_tag_cell_1;
+  reg  [19:0] ks_9_tag_cell_2;
+  reg  [2:0]  ks_9_tag_off_0;
+  reg  [2:0]  ks_9_tag_off_1;
+  reg  [2:0]  ks_9_tag_off_2;
+  reg  [11:0] ks_9_item;
+  reg         ks_9_mark;
+  reg  [1:0]  ks_10_group;
+  reg  [12:0] ks_10_pos;
+  reg         ks_10_tag_scan;
+  reg  [19:0] ks_10_tag_cell_0;
+  reg  [19:0] ks_10_tag_cell_1;
+  reg  [19:0] ks_10_tag_cell_2;
+  reg  [2:0]  ks_10_tag_off_0;
+  reg  [2:0]  ks_10_tag_off_1;
+  reg  [2:0]  ks_10_tag_off_2;
+  reg  [11:0] ks_10_item;
+  reg         ks_10_mark;
   wire        issue =
-    busy & {1'h0, _q_io_count}
-    + {1'h0, {1'h0, {1'h0, s1v} + {1'h0, kv_0}} + {2'h0, kv_1}} < 4'h5;
+    busy & {9'h0, _q_io_count}
+    + {1'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0,
+          {1'h0,
+           {1'h0,
+            {1'h0,
+             {1'h0,
+              {1'h0,
+               {1'h0, {1'h0, {1'h0, s1v} + {1'h0, kv_0}} + {2'h0, kv_1}} + {3'h0, kv_2}}
+                + {4'h0, kv_3}} + {5'h0, kv_4}} + {6'h0, kv_5}} + {7'h0, kv_6}}
+            + {8'h0, kv_7}} + {9'h0, kv_8}} + {10'h0, kv_9}} + {11'h0, kv_10}} < 13'hE;
   wire        left_1 = cur_begin_1 != cur_end_1;
   wire        left_2 = cur_begin_2 != cur_end_2;
   wire [1:0]  g = cur_begin_0 != cur_end_0 ? 2'h0 : left_1 ? 2'h1 : {1'h1, ~left_2};
@@ -81506,7 +82535,7 @@ module KeyStream_world(
   wire [11:0] item = s1_direct ? s1_pos[11:0] : io_entryItem;
   `ifndef SYNTHESIS
     always @(posedge clock) begin
-      if (~reset & ~(~kv_1 | _q_io_enq_ready)) begin
+      if (~reset & ~(~kv_10 | _q_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
           $error("Assertion failed: KeyStream_world: a read came back with no room (credit accounting)\n    at KeyStream_world.scala:123 assert(!kv.last || q.io.enq.ready, \"KeyStream_world: a read came back with no room (credit accounting)\")\n");
         if (`STOP_COND_)
@@ -81580,11 +82609,119 @@ module KeyStream_world(
     ks_1_tag_off_2 <= ks_0_tag_off_2;
     ks_1_item <= ks_0_item;
     ks_1_mark <= ks_0_mark;
+    ks_2_group <= ks_1_group;
+    ks_2_pos <= ks_1_pos;
+    ks_2_tag_scan <= ks_1_tag_scan;
+    ks_2_tag_cell_0 <= ks_1_tag_cell_0;
+    ks_2_tag_cell_1 <= ks_1_tag_cell_1;
+    ks_2_tag_cell_2 <= ks_1_tag_cell_2;
+    ks_2_tag_off_0 <= ks_1_tag_off_0;
+    ks_2_tag_off_1 <= ks_1_tag_off_1;
+    ks_2_tag_off_2 <= ks_1_tag_off_2;
+    ks_2_item <= ks_1_item;
+    ks_2_mark <= ks_1_mark;
+    ks_3_group <= ks_2_group;
+    ks_3_pos <= ks_2_pos;
+    ks_3_tag_scan <= ks_2_tag_scan;
+    ks_3_tag_cell_0 <= ks_2_tag_cell_0;
+    ks_3_tag_cell_1 <= ks_2_tag_cell_1;
+    ks_3_tag_cell_2 <= ks_2_tag_cell_2;
+    ks_3_tag_off_0 <= ks_2_tag_off_0;
+    ks_3_tag_off_1 <= ks_2_tag_off_1;
+    ks_3_tag_off_2 <= ks_2_tag_off_2;
+    ks_3_item <= ks_2_item;
+    ks_3_mark <= ks_2_mark;
+    ks_4_group <= ks_3_group;
+    ks_4_pos <= ks_3_pos;
+    ks_4_tag_scan <= ks_3_tag_scan;
+    ks_4_tag_cell_0 <= ks_3_tag_cell_0;
+    ks_4_tag_cell_1 <= ks_3_tag_cell_1;
+    ks_4_tag_cell_2 <= ks_3_tag_cell_2;
+    ks_4_tag_off_0 <= ks_3_tag_off_0;
+    ks_4_tag_off_1 <= ks_3_tag_off_1;
+    ks_4_tag_off_2 <= ks_3_tag_off_2;
+    ks_4_item <= ks_3_item;
+    ks_4_mark <= ks_3_mark;
+    ks_5_group <= ks_4_group;
+    ks_5_pos <= ks_4_pos;
+    ks_5_tag_scan <= ks_4_tag_scan;
+    ks_5_tag_cell_0 <= ks_4_tag_cell_0;
+    ks_5_tag_cell_1 <= ks_4_tag_cell_1;
+    ks_5_tag_cell_2 <= ks_4_tag_cell_2;
+    ks_5_tag_off_0 <= ks_4_tag_off_0;
+    ks_5_tag_off_1 <= ks_4_tag_off_1;
+    ks_5_tag_off_2 <= ks_4_tag_off_2;
+    ks_5_item <= ks_4_item;
+    ks_5_mark <= ks_4_mark;
+    ks_6_group <= ks_5_group;
+    ks_6_pos <= ks_5_pos;
+    ks_6_tag_scan <= ks_5_tag_scan;
+    ks_6_tag_cell_0 <= ks_5_tag_cell_0;
+    ks_6_tag_cell_1 <= ks_5_tag_cell_1;
+    ks_6_tag_cell_2 <= ks_5_tag_cell_2;
+    ks_6_tag_off_0 <= ks_5_tag_off_0;
+    ks_6_tag_off_1 <= ks_5_tag_off_1;
+    ks_6_tag_off_2 <= ks_5_tag_off_2;
+    ks_6_item <= ks_5_item;
+    ks_6_mark <= ks_5_mark;
+    ks_7_group <= ks_6_group;
+    ks_7_pos <= ks_6_pos;
+    ks_7_tag_scan <= ks_6_tag_scan;
+    ks_7_tag_cell_0 <= ks_6_tag_cell_0;
+    ks_7_tag_cell_1 <= ks_6_tag_cell_1;
+    ks_7_tag_cell_2 <= ks_6_tag_cell_2;
+    ks_7_tag_off_0 <= ks_6_tag_off_0;
+    ks_7_tag_off_1 <= ks_6_tag_off_1;
+    ks_7_tag_off_2 <= ks_6_tag_off_2;
+    ks_7_item <= ks_6_item;
+    ks_7_mark <= ks_6_mark;
+    ks_8_group <= ks_7_group;
+    ks_8_pos <= ks_7_pos;
+    ks_8_tag_scan <= ks_7_tag_scan;
+    ks_8_tag_cell_0 <= ks_7_tag_cell_0;
+    ks_8_tag_cell_1 <= ks_7_tag_cell_1;
+    ks_8_tag_cell_2 <= ks_7_tag_cell_2;
+    ks_8_tag_off_0 <= ks_7_tag_off_0;
+    ks_8_tag_off_1 <= ks_7_tag_off_1;
+    ks_8_tag_off_2 <= ks_7_tag_off_2;
+    ks_8_item <= ks_7_item;
+    ks_8_mark <= ks_7_mark;
+    ks_9_group <= ks_8_group;
+    ks_9_pos <= ks_8_pos;
+    ks_9_tag_scan <= ks_8_tag_scan;
+    ks_9_tag_cell_0 <= ks_8_tag_cell_0;
+    ks_9_tag_cell_1 <= ks_8_tag_cell_1;
+    ks_9_tag_cell_2 <= ks_8_tag_cell_2;
+    ks_9_tag_off_0 <= ks_8_tag_off_0;
+    ks_9_tag_off_1 <= ks_8_tag_off_1;
+    ks_9_tag_off_2 <= ks_8_tag_off_2;
+    ks_9_item <= ks_8_item;
+    ks_9_mark <= ks_8_mark;
+    ks_10_group <= ks_9_group;
+    ks_10_pos <= ks_9_pos;
+    ks_10_tag_scan <= ks_9_tag_scan;
+    ks_10_tag_cell_0 <= ks_9_tag_cell_0;
+    ks_10_tag_cell_1 <= ks_9_tag_cell_1;
+    ks_10_tag_cell_2 <= ks_9_tag_cell_2;
+    ks_10_tag_off_0 <= ks_9_tag_off_0;
+    ks_10_tag_off_1 <= ks_9_tag_off_1;
+    ks_10_tag_off_2 <= ks_9_tag_off_2;
+    ks_10_item <= ks_9_item;
+    ks_10_mark <= ks_9_mark;
     if (reset) begin
       busy <= 1'h0;
       s1v <= 1'h0;
       kv_0 <= 1'h0;
       kv_1 <= 1'h0;
+      kv_2 <= 1'h0;
+      kv_3 <= 1'h0;
+      kv_4 <= 1'h0;
+      kv_5 <= 1'h0;
+      kv_6 <= 1'h0;
+      kv_7 <= 1'h0;
+      kv_8 <= 1'h0;
+      kv_9 <= 1'h0;
+      kv_10 <= 1'h0;
     end
     else begin
       if (_GEN)
@@ -81598,17 +82735,26 @@ module KeyStream_world(
       s1v <= issue;
       kv_0 <= s1v;
       kv_1 <= kv_0;
+      kv_2 <= kv_1;
+      kv_3 <= kv_2;
+      kv_4 <= kv_3;
+      kv_5 <= kv_4;
+      kv_6 <= kv_5;
+      kv_7 <= kv_6;
+      kv_8 <= kv_7;
+      kv_9 <= kv_8;
+      kv_10 <= kv_9;
     end
   end // always @(posedge)
-  Queue5_StreamItem_world q (
+  Queue14_StreamItem_world q (
     .clock                    (clock),
     .reset                    (reset),
     .io_enq_ready             (_q_io_enq_ready),
-    .io_enq_valid             (kv_1),
-    .io_enq_bits_group        (ks_1_group),
-    .io_enq_bits_pos          (ks_1_pos),
-    .io_enq_bits_item         (ks_1_item),
-    .io_enq_bits_mark         (ks_1_mark),
+    .io_enq_valid             (kv_10),
+    .io_enq_bits_group        (ks_10_group),
+    .io_enq_bits_pos          (ks_10_pos),
+    .io_enq_bits_item         (ks_10_item),
+    .io_enq_bits_mark         (ks_10_mark),
     .io_enq_bits_rec_cell_0   (io_keyData_cell_0),
     .io_enq_bits_rec_cell_1   (io_keyData_cell_1),
     .io_enq_bits_rec_cell_2   (io_keyData_cell_2),
@@ -81618,13 +82764,13 @@ module KeyStream_world(
     .io_enq_bits_rec_qr       (io_keyData_qr),
     .io_enq_bits_rec_large    (io_keyData_large),
     .io_enq_bits_rec_excluded (io_keyData_excluded),
-    .io_enq_bits_tag_scan     (ks_1_tag_scan),
-    .io_enq_bits_tag_cell_0   (ks_1_tag_cell_0),
-    .io_enq_bits_tag_cell_1   (ks_1_tag_cell_1),
-    .io_enq_bits_tag_cell_2   (ks_1_tag_cell_2),
-    .io_enq_bits_tag_off_0    (ks_1_tag_off_0),
-    .io_enq_bits_tag_off_1    (ks_1_tag_off_1),
-    .io_enq_bits_tag_off_2    (ks_1_tag_off_2),
+    .io_enq_bits_tag_scan     (ks_10_tag_scan),
+    .io_enq_bits_tag_cell_0   (ks_10_tag_cell_0),
+    .io_enq_bits_tag_cell_1   (ks_10_tag_cell_1),
+    .io_enq_bits_tag_cell_2   (ks_10_tag_cell_2),
+    .io_enq_bits_tag_off_0    (ks_10_tag_off_0),
+    .io_enq_bits_tag_off_1    (ks_10_tag_off_1),
+    .io_enq_bits_tag_off_2    (ks_10_tag_off_2),
     .io_deq_ready             (io_out_ready),
     .io_deq_valid             (_q_io_deq_valid),
     .io_deq_bits_group        (io_out_bits_group),
@@ -81654,7 +82800,10 @@ module KeyStream_world(
   assign io_entryGroup = g;
   assign io_keyAddr = item;
   assign io_out_valid = _q_io_deq_valid;
-  assign io_idle = ~busy & ~s1v & ~(kv_0 | kv_1) & ~_q_io_deq_valid;
+  assign io_idle =
+    ~busy & ~s1v
+    & ~(kv_0 | kv_1 | kv_2 | kv_3 | kv_4 | kv_5 | kv_6 | kv_7 | kv_8 | kv_9 | kv_10)
+    & ~_q_io_deq_valid;
 endmodule
 
 // VCS coverage exclude_file
@@ -84181,7 +85330,7 @@ module Queue6_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 3'h2 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world(
   input         clock,
                 reset,
                 io_start,
@@ -87032,7 +88181,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_s
   assign io_busy = |state;
 endmodule
 
-module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
+module SphereKeys_fp32_c20_f8_m9d8_e2_l10_world(
   input         clock,
                 reset,
                 io_in_valid,
@@ -87057,7 +88206,260 @@ module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
   output        io_out_topNone
 );
 
+  reg         raw_r_0_isZero;
+  reg         raw_r_0_sign;
+  reg         raw_r_0_expZero;
+  reg  [7:0]  raw_r_0_e;
+  reg  [22:0] raw_r_0_frac;
+  reg  [4:0]  raw_r_0_lz;
+  reg         raw_r_1_isZero;
+  reg         raw_r_1_sign;
+  reg         raw_r_1_expZero;
+  reg  [7:0]  raw_r_1_e;
+  reg  [22:0] raw_r_1_frac;
+  reg  [4:0]  raw_r_1_lz;
+  reg         raw_r_2_isZero;
+  reg         raw_r_2_sign;
+  reg         raw_r_2_expZero;
+  reg  [7:0]  raw_r_2_e;
+  reg  [22:0] raw_r_2_frac;
+  reg  [4:0]  raw_r_2_lz;
+  reg         raw_r_3_isZero;
+  reg         raw_r_3_sign;
+  reg         raw_r_3_expZero;
+  reg  [7:0]  raw_r_3_e;
+  reg  [22:0] raw_r_3_frac;
+  reg  [4:0]  raw_r_3_lz;
+  reg         rawE_0_isZero;
+  reg         rawE_0_sign;
+  reg  [9:0]  rawE_0_sExp;
+  reg  [23:0] rawE_0_sig;
+  reg         rawE_1_isZero;
+  reg         rawE_1_sign;
+  reg  [9:0]  rawE_1_sExp;
+  reg  [23:0] rawE_1_sig;
+  reg         rawE_2_isZero;
+  reg         rawE_2_sign;
+  reg  [9:0]  rawE_2_sExp;
+  reg  [23:0] rawE_2_sig;
+  reg         rawE_3_isZero;
+  reg         rawE_3_sign;
+  reg  [9:0]  rawE_3_sExp;
+  reg  [23:0] rawE_3_sig;
+  reg         nonFinite_r;
+  reg         nonFinite_r_1;
+  reg         nonFinite_r_2;
+  reg         nonFinite_r_3;
+  reg         nonFinite_r_4;
+  reg         nonFinite_r_5;
+  reg         nonFinite_r_6;
+  reg         nonFinite_r_7;
+  reg         nonFinite;
+  reg  [13:0] scaled_r;
+  reg  [13:0] scaled_r_1;
+  reg  [14:0] scaled_t;
+  reg         scaled_v_r_isZero;
+  reg         scaled_v_r_sign;
+  reg  [23:0] scaled_v_r_sig;
+  reg         scaled_v_isZero;
+  reg         scaled_v_sign;
+  reg  [23:0] scaled_v_sig;
+  reg         scaled_l;
+  reg  [4:0]  scaled_lA;
+  reg  [4:0]  scaled_rA;
+  reg  [47:0] scaled_mag;
+  reg         scaled_up;
+  reg  [21:0] scaled_low;
+  reg         scaled_over;
+  reg         scaled_vS_r_isZero;
+  reg         scaled_vS_r_sign;
+  reg         scaled_vS_isZero;
+  reg         scaled_vS_sign;
+  reg  [13:0] scaled_r_2;
+  reg  [13:0] scaled_r_3;
+  reg  [14:0] scaled_t_1;
+  reg         scaled_v_r_1_isZero;
+  reg         scaled_v_r_1_sign;
+  reg  [23:0] scaled_v_r_1_sig;
+  reg         scaled_v_1_isZero;
+  reg         scaled_v_1_sign;
+  reg  [23:0] scaled_v_1_sig;
+  reg         scaled_l_1;
+  reg  [4:0]  scaled_lA_1;
+  reg  [4:0]  scaled_rA_1;
+  reg  [47:0] scaled_mag_1;
+  reg         scaled_up_1;
+  reg  [21:0] scaled_low_1;
+  reg         scaled_over_1;
+  reg         scaled_vS_r_1_isZero;
+  reg         scaled_vS_r_1_sign;
+  reg         scaled_vS_1_isZero;
+  reg         scaled_vS_1_sign;
+  reg  [13:0] scaled_r_4;
+  reg  [13:0] scaled_r_5;
+  reg  [14:0] scaled_t_2;
+  reg         scaled_v_r_2_isZero;
+  reg         scaled_v_r_2_sign;
+  reg  [23:0] scaled_v_r_2_sig;
+  reg         scaled_v_2_isZero;
+  reg         scaled_v_2_sign;
+  reg  [23:0] scaled_v_2_sig;
+  reg         scaled_l_2;
+  reg  [4:0]  scaled_lA_2;
+  reg  [4:0]  scaled_rA_2;
+  reg  [47:0] scaled_mag_2;
+  reg         scaled_up_2;
+  reg  [21:0] scaled_low_2;
+  reg         scaled_over_2;
+  reg         scaled_vS_r_2_isZero;
+  reg         scaled_vS_r_2_sign;
+  reg         scaled_vS_2_isZero;
+  reg         scaled_vS_2_sign;
+  reg         oddB_r;
+  reg         oddB_r_1;
+  reg         oddB_r_2;
+  reg         oddB_r_3;
+  reg         oddB_r_4;
+  reg         oddB_r_5;
+  reg         oddB;
+  reg  [21:0] cellsAndOver_plain_r;
+  reg  [21:0] cellsAndOver_plain_r_1;
+  reg  [21:0] cellsAndOver_plain;
+  reg  [21:0] cellsAndOver_cell_u_r;
+  reg  [22:0] cellsAndOver_cell_q_r;
+  reg         cellsAndOver_cell_r;
+  reg         cellsAndOver_cell_r_1;
+  reg  [21:0] cellsAndOver_cell_r_2;
+  reg  [21:0] cellsAndOver_cB;
+  reg         cellsAndOver_r;
+  reg         cellsAndOver_r_1;
+  reg         cellsAndOver_0_2;
+  reg  [21:0] cellsAndOver_plain_r_2;
+  reg  [21:0] cellsAndOver_plain_r_3;
+  reg  [21:0] cellsAndOver_plain_1;
+  reg  [21:0] cellsAndOver_cell_u_r_1;
+  reg  [22:0] cellsAndOver_cell_q_r_1;
+  reg         cellsAndOver_cell_r_3;
+  reg         cellsAndOver_cell_r_4;
+  reg  [21:0] cellsAndOver_cell_r_5;
+  reg  [21:0] cellsAndOver_cB_1;
+  reg         cellsAndOver_r_2;
+  reg         cellsAndOver_r_3;
+  reg         cellsAndOver_1_2;
+  reg  [21:0] cellsAndOver_plain_r_4;
+  reg  [21:0] cellsAndOver_plain_r_5;
+  reg  [21:0] cellsAndOver_plain_2;
+  reg  [21:0] cellsAndOver_cell_u_r_2;
+  reg  [22:0] cellsAndOver_cell_q_r_2;
+  reg         cellsAndOver_cell_r_6;
+  reg         cellsAndOver_cell_r_7;
+  reg  [21:0] cellsAndOver_cell_r_8;
+  reg  [21:0] cellsAndOver_cB_2;
+  reg         cellsAndOver_r_4;
+  reg         cellsAndOver_r_5;
+  reg         cellsAndOver_2_2;
+  reg  [13:0] qs_r;
+  reg  [13:0] qs_r_1;
+  reg  [14:0] qs_t;
+  reg         qs_v_r_isZero;
+  reg         qs_v_r_sign;
+  reg  [23:0] qs_v_r_sig;
+  reg         qs_v_isZero;
+  reg         qs_v_sign;
+  reg  [23:0] qs_v_sig;
+  reg         qs_l;
+  reg  [4:0]  qs_lA;
+  reg  [4:0]  qs_rA;
+  reg  [54:0] qs_mag;
+  reg         qs_up;
+  reg  [28:0] qs_low;
+  reg         qs_vS_r_isZero;
+  reg         qs_vS_r_sign;
+  reg         qs_vS_isZero;
+  reg         qs_vS_sign;
+  reg  [13:0] qs_r_2;
+  reg  [13:0] qs_r_3;
+  reg  [14:0] qs_t_1;
+  reg         qs_v_r_1_isZero;
+  reg         qs_v_r_1_sign;
+  reg  [23:0] qs_v_r_1_sig;
+  reg         qs_v_1_isZero;
+  reg         qs_v_1_sign;
+  reg  [23:0] qs_v_1_sig;
+  reg         qs_l_1;
+  reg  [4:0]  qs_lA_1;
+  reg  [4:0]  qs_rA_1;
+  reg  [54:0] qs_mag_1;
+  reg         qs_up_1;
+  reg  [28:0] qs_low_1;
+  reg         qs_vS_r_1_isZero;
+  reg         qs_vS_r_1_sign;
+  reg         qs_vS_1_isZero;
+  reg         qs_vS_1_sign;
+  reg  [13:0] qs_r_4;
+  reg  [13:0] qs_r_5;
+  reg  [14:0] qs_t_2;
+  reg         qs_v_r_2_isZero;
+  reg         qs_v_r_2_sign;
+  reg  [23:0] qs_v_r_2_sig;
+  reg         qs_v_2_isZero;
+  reg         qs_v_2_sign;
+  reg  [23:0] qs_v_2_sig;
+  reg         qs_l_2;
+  reg  [4:0]  qs_lA_2;
+  reg  [4:0]  qs_rA_2;
+  reg  [54:0] qs_mag_2;
+  reg         qs_up_2;
+  reg  [28:0] qs_low_2;
+  reg         qs_vS_r_2_isZero;
+  reg         qs_vS_r_2_sign;
+  reg         qs_vS_2_isZero;
+  reg         qs_vS_2_sign;
+  reg  [13:0] tq_r;
+  reg  [13:0] tq_r_1;
+  reg  [14:0] tq;
+  reg         rA_isZero;
+  reg         rA_sign;
+  reg  [9:0]  rA_sExp;
+  reg  [23:0] rA_sig;
+  reg  [27:0] rNumS;
+  reg  [4:0]  qrLS;
+  reg  [4:0]  qrRS;
+  reg  [58:0] qrLeft;
+  reg  [27:0] qrRight_r;
+  reg         qrRight_r_1;
+  reg         qrWide_r;
+  reg         qrWide_r_1;
+  reg         qrWide_r_2;
+  reg  [58:0] qrWide_r_3;
+  reg  [28:0] qrWide_r_4;
+  reg         rNone_r;
+  reg         rNone_r_1;
+  reg         rNone;
+  reg  [28:0] x;
+  reg  [4:0]  lead;
+  reg  [10:0] eOff_r;
+  reg  [10:0] eOff_r_1;
+  reg  [10:0] eOff;
+  reg  [11:0] needK;
+  reg  [28:0] oddFits_r;
+  reg         oddFits;
+  reg         xyz_r;
+  reg  [9:0]  xyz_r_1;
+  reg         xyz_r_2;
+  reg  [9:0]  xyz_r_3;
+  reg         topNone;
+  reg  [9:0]  top_r;
   reg         io_out_valid_r;
+  reg         io_out_valid_r_1;
+  reg         io_out_valid_r_2;
+  reg         io_out_valid_r_3;
+  reg         io_out_valid_r_4;
+  reg         io_out_valid_r_5;
+  reg         io_out_valid_r_6;
+  reg         io_out_valid_r_7;
+  reg         io_out_valid_r_8;
+  reg         io_out_valid_r_9;
   reg  [19:0] r_0;
   reg  [19:0] r_1;
   reg  [19:0] r_2;
@@ -87065,449 +88467,328 @@ module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
   reg  [28:0] r_1_0;
   reg  [28:0] r_1_1;
   reg  [28:0] r_1_2;
+  reg  [28:0] r_2_0;
+  reg  [28:0] r_2_1;
+  reg  [28:0] r_2_2;
+  reg  [28:0] r_3_0;
+  reg  [28:0] r_3_1;
+  reg  [28:0] r_3_2;
+  reg  [28:0] r_4_0;
+  reg  [28:0] r_4_1;
+  reg  [28:0] r_4_2;
   reg  [28:0] io_out_qr_r;
+  reg  [28:0] io_out_qr_r_1;
+  reg  [28:0] io_out_qr_r_2;
+  reg  [28:0] io_out_qr_r_3;
   reg  [13:0] io_out_need_r;
+  reg  [13:0] io_out_need_r_1;
+  reg  [13:0] io_out_need_r_2;
   reg         io_out_needNone_r;
+  reg         io_out_needNone_r_1;
+  reg         io_out_needNone_r_2;
+  reg         io_out_needNone_r_3;
   reg         io_out_nonFinite_r;
   reg  [13:0] io_out_top_r;
+  reg  [13:0] io_out_top_r_1;
+  reg  [13:0] io_out_top_r_2;
+  reg  [13:0] io_out_top_r_3;
+  reg  [13:0] io_out_top_r_4;
+  reg  [13:0] io_out_top_r_5;
   reg         io_out_topNone_r;
-  wire        raw_expZero = io_in_sphere_0[30:23] == 8'h0;
-  wire        raw_0_isZero = raw_expZero & ~(|(io_in_sphere_0[22:0]));
+  reg         io_out_topNone_r_1;
+  reg         io_out_topNone_r_2;
+  reg         io_out_topNone_r_3;
+  reg         io_out_topNone_r_4;
+  reg         io_out_topNone_r_5;
+  wire        cls_expZero = io_in_sphere_0[30:23] == 8'h0;
   wire [3:0]  _GEN =
     {{io_in_sphere_0[5:4], io_in_sphere_0[7]} & 3'h5, 1'h0}
     | {io_in_sphere_0[7:6], io_in_sphere_0[9:8]} & 4'h5;
-  wire [4:0]  raw_out_lz =
-    io_in_sphere_0[22]
-      ? 5'h0
-      : io_in_sphere_0[21]
-          ? 5'h1
-          : io_in_sphere_0[20]
-              ? 5'h2
-              : io_in_sphere_0[19]
-                  ? 5'h3
-                  : io_in_sphere_0[18]
-                      ? 5'h4
-                      : io_in_sphere_0[17]
-                          ? 5'h5
-                          : io_in_sphere_0[16]
-                              ? 5'h6
-                              : io_in_sphere_0[15]
-                                  ? 5'h7
-                                  : io_in_sphere_0[14]
-                                      ? 5'h8
-                                      : io_in_sphere_0[13]
-                                          ? 5'h9
-                                          : io_in_sphere_0[12]
-                                              ? 5'hA
-                                              : io_in_sphere_0[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_0[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_0[9]
-                                                          ? 5'hD
-                                                          : _GEN[0]
-                                                              ? 5'hE
-                                                              : _GEN[1]
-                                                                  ? 5'hF
-                                                                  : _GEN[2]
-                                                                      ? 5'h10
-                                                                      : _GEN[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_0[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_0[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_0[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_0[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_1 =
-    {63'h0, io_in_sphere_0[22:0]} << {1'h0, raw_out_lz} + 6'h1;
-  wire [23:0] raw_0_sig =
-    raw_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_sphere_0[22:0]};
-  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_sphere_0[30:23]} - 9'h7F;
-  wire [9:0]  raw_0_sExp =
-    raw_expZero
-      ? 10'h381 - {5'h0, raw_out_lz}
-      : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
-  wire        raw_expZero_1 = io_in_sphere_1[30:23] == 8'h0;
-  wire        raw_1_isZero = raw_expZero_1 & ~(|(io_in_sphere_1[22:0]));
+  wire        cls_1_expZero = io_in_sphere_1[30:23] == 8'h0;
   wire [3:0]  _GEN_0 =
     {{io_in_sphere_1[5:4], io_in_sphere_1[7]} & 3'h5, 1'h0}
     | {io_in_sphere_1[7:6], io_in_sphere_1[9:8]} & 4'h5;
-  wire [4:0]  raw_out_1_lz =
-    io_in_sphere_1[22]
-      ? 5'h0
-      : io_in_sphere_1[21]
-          ? 5'h1
-          : io_in_sphere_1[20]
-              ? 5'h2
-              : io_in_sphere_1[19]
-                  ? 5'h3
-                  : io_in_sphere_1[18]
-                      ? 5'h4
-                      : io_in_sphere_1[17]
-                          ? 5'h5
-                          : io_in_sphere_1[16]
-                              ? 5'h6
-                              : io_in_sphere_1[15]
-                                  ? 5'h7
-                                  : io_in_sphere_1[14]
-                                      ? 5'h8
-                                      : io_in_sphere_1[13]
-                                          ? 5'h9
-                                          : io_in_sphere_1[12]
-                                              ? 5'hA
-                                              : io_in_sphere_1[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_1[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_1[9]
-                                                          ? 5'hD
-                                                          : _GEN_0[0]
-                                                              ? 5'hE
-                                                              : _GEN_0[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_0[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_0[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_1[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_1[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_1[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_1[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_3 =
-    {63'h0, io_in_sphere_1[22:0]} << {1'h0, raw_out_1_lz} + 6'h1;
-  wire [23:0] raw_1_sig =
-    raw_expZero_1 ? _raw_subSig_T_3[23:0] : {1'h1, io_in_sphere_1[22:0]};
-  wire [8:0]  _raw_out_sExp_T_6 = {1'h0, io_in_sphere_1[30:23]} - 9'h7F;
-  wire [9:0]  raw_1_sExp =
-    raw_expZero_1
-      ? 10'h381 - {5'h0, raw_out_1_lz}
-      : {_raw_out_sExp_T_6[8], _raw_out_sExp_T_6};
-  wire        raw_expZero_2 = io_in_sphere_2[30:23] == 8'h0;
-  wire        raw_2_isZero = raw_expZero_2 & ~(|(io_in_sphere_2[22:0]));
+  wire        cls_2_expZero = io_in_sphere_2[30:23] == 8'h0;
   wire [3:0]  _GEN_1 =
     {{io_in_sphere_2[5:4], io_in_sphere_2[7]} & 3'h5, 1'h0}
     | {io_in_sphere_2[7:6], io_in_sphere_2[9:8]} & 4'h5;
-  wire [4:0]  raw_out_2_lz =
-    io_in_sphere_2[22]
-      ? 5'h0
-      : io_in_sphere_2[21]
-          ? 5'h1
-          : io_in_sphere_2[20]
-              ? 5'h2
-              : io_in_sphere_2[19]
-                  ? 5'h3
-                  : io_in_sphere_2[18]
-                      ? 5'h4
-                      : io_in_sphere_2[17]
-                          ? 5'h5
-                          : io_in_sphere_2[16]
-                              ? 5'h6
-                              : io_in_sphere_2[15]
-                                  ? 5'h7
-                                  : io_in_sphere_2[14]
-                                      ? 5'h8
-                                      : io_in_sphere_2[13]
-                                          ? 5'h9
-                                          : io_in_sphere_2[12]
-                                              ? 5'hA
-                                              : io_in_sphere_2[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_2[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_2[9]
-                                                          ? 5'hD
-                                                          : _GEN_1[0]
-                                                              ? 5'hE
-                                                              : _GEN_1[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_1[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_1[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_2[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_2[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_2[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_2[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_5 =
-    {63'h0, io_in_sphere_2[22:0]} << {1'h0, raw_out_2_lz} + 6'h1;
-  wire [23:0] raw_2_sig =
-    raw_expZero_2 ? _raw_subSig_T_5[23:0] : {1'h1, io_in_sphere_2[22:0]};
-  wire [8:0]  _raw_out_sExp_T_11 = {1'h0, io_in_sphere_2[30:23]} - 9'h7F;
-  wire [9:0]  raw_2_sExp =
-    raw_expZero_2
-      ? 10'h381 - {5'h0, raw_out_2_lz}
-      : {_raw_out_sExp_T_11[8], _raw_out_sExp_T_11};
-  wire        raw_expZero_3 = io_in_sphere_3[30:23] == 8'h0;
+  wire        cls_3_expZero = io_in_sphere_3[30:23] == 8'h0;
   wire [3:0]  _GEN_2 =
     {{io_in_sphere_3[5:4], io_in_sphere_3[7]} & 3'h5, 1'h0}
     | {io_in_sphere_3[7:6], io_in_sphere_3[9:8]} & 4'h5;
-  wire [4:0]  raw_out_3_lz =
-    io_in_sphere_3[22]
-      ? 5'h0
-      : io_in_sphere_3[21]
-          ? 5'h1
-          : io_in_sphere_3[20]
-              ? 5'h2
-              : io_in_sphere_3[19]
-                  ? 5'h3
-                  : io_in_sphere_3[18]
-                      ? 5'h4
-                      : io_in_sphere_3[17]
-                          ? 5'h5
-                          : io_in_sphere_3[16]
-                              ? 5'h6
-                              : io_in_sphere_3[15]
-                                  ? 5'h7
-                                  : io_in_sphere_3[14]
-                                      ? 5'h8
-                                      : io_in_sphere_3[13]
-                                          ? 5'h9
-                                          : io_in_sphere_3[12]
-                                              ? 5'hA
-                                              : io_in_sphere_3[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_3[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_3[9]
-                                                          ? 5'hD
-                                                          : _GEN_2[0]
-                                                              ? 5'hE
-                                                              : _GEN_2[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_2[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_2[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_3[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_3[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_3[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_3[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [8:0]  _raw_out_sExp_T_16 = {1'h0, io_in_sphere_3[30:23]} - 9'h7F;
-  wire [9:0]  raw_3_sExp =
-    raw_expZero_3
-      ? 10'h381 - {5'h0, raw_out_3_lz}
-      : {_raw_out_sExp_T_16[8], _raw_out_sExp_T_16};
-  wire [14:0] _k_T = {io_in_level[13], io_in_level} + 15'h1;
-  wire [14:0] _GEN_3 = {_k_T[14], _k_T[14:1]};
-  wire [14:0] _cellsAndOver_T_18 = _GEN_3 - 15'h2;
-  wire [14:0] _cellsAndOver_T_1 = io_in_level[0] ? _cellsAndOver_T_18 : _GEN_3;
-  wire [10:0] _GEN_4 = {raw_0_sExp[9], raw_0_sExp};
-  wire [10:0] _qs_t_T = _GEN_4 - 11'h17;
-  wire [15:0] _GEN_5 = {{5{_qs_t_T[10]}}, _qs_t_T};
-  wire [15:0] cellsAndOver_t = _GEN_5 - {_cellsAndOver_T_1[14], _cellsAndOver_T_1};
-  wire        cellsAndOver_left = $signed(cellsAndOver_t) > -16'sh1;
-  wire [16:0] _cellsAndOver_rNeg_T = 17'h0 - {cellsAndOver_t[15], cellsAndOver_t};
-  wire [4:0]  _cellsAndOver_rAmt_T_1 =
-    _cellsAndOver_rNeg_T > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T[4:0];
-  wire [54:0] _GEN_6 = {31'h0, raw_0_sig};
-  wire [31:0] _cellsAndOver_sticky_T = 32'h1 << _cellsAndOver_rAmt_T_1;
-  wire [54:0] _cellsAndOver_shiftedL_T =
-    _GEN_6 << ($signed(cellsAndOver_t) > 16'sh17 ? 5'h17 : cellsAndOver_t[4:0]);
-  wire [48:0] cellsAndOver_m =
-    {1'h0,
-     cellsAndOver_left
-       ? _cellsAndOver_shiftedL_T[47:0]
-       : {24'h0, raw_0_sig >> _cellsAndOver_rAmt_T_1}}
-    + {48'h0,
-       ~cellsAndOver_left & (|(raw_0_sig & _cellsAndOver_sticky_T[23:0] - 24'h1))
-         & io_in_sphere_0[31]};
-  wire [21:0] cellsAndOver_c =
-    raw_0_isZero
-      ? 22'h0
-      : io_in_sphere_0[31] ? 22'h0 - cellsAndOver_m[21:0] : cellsAndOver_m[21:0];
-  wire [46:0] _cellsAndOver_q_T =
-    {24'h0, {cellsAndOver_c[21], cellsAndOver_c} - 23'h200000} * 47'hAAAAAB;
-  wire [21:0] cellsAndOver_0_1 =
-    io_in_level[0] ? _cellsAndOver_q_T[46:25] - 22'h200000 : cellsAndOver_c;
-  wire [14:0] _cellsAndOver_T_10 = io_in_level[0] ? _cellsAndOver_T_18 : _GEN_3;
-  wire [10:0] _GEN_7 = {raw_1_sExp[9], raw_1_sExp};
-  wire [10:0] _qs_t_T_1 = _GEN_7 - 11'h17;
-  wire [15:0] _GEN_8 = {{5{_qs_t_T_1[10]}}, _qs_t_T_1};
-  wire [15:0] cellsAndOver_t_1 = _GEN_8 - {_cellsAndOver_T_10[14], _cellsAndOver_T_10};
-  wire        cellsAndOver_left_1 = $signed(cellsAndOver_t_1) > -16'sh1;
-  wire [16:0] _cellsAndOver_rNeg_T_1 = 17'h0 - {cellsAndOver_t_1[15], cellsAndOver_t_1};
-  wire [4:0]  _cellsAndOver_rAmt_T_3 =
-    _cellsAndOver_rNeg_T_1 > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T_1[4:0];
-  wire [54:0] _GEN_9 = {31'h0, raw_1_sig};
-  wire [31:0] _cellsAndOver_sticky_T_5 = 32'h1 << _cellsAndOver_rAmt_T_3;
-  wire [54:0] _cellsAndOver_shiftedL_T_1 =
-    _GEN_9 << ($signed(cellsAndOver_t_1) > 16'sh17 ? 5'h17 : cellsAndOver_t_1[4:0]);
-  wire [48:0] cellsAndOver_m_1 =
-    {1'h0,
-     cellsAndOver_left_1
-       ? _cellsAndOver_shiftedL_T_1[47:0]
-       : {24'h0, raw_1_sig >> _cellsAndOver_rAmt_T_3}}
-    + {48'h0,
-       ~cellsAndOver_left_1 & (|(raw_1_sig & _cellsAndOver_sticky_T_5[23:0] - 24'h1))
-         & io_in_sphere_1[31]};
-  wire [21:0] cellsAndOver_c_1 =
-    raw_1_isZero
-      ? 22'h0
-      : io_in_sphere_1[31] ? 22'h0 - cellsAndOver_m_1[21:0] : cellsAndOver_m_1[21:0];
-  wire [46:0] _cellsAndOver_q_T_1 =
-    {24'h0, {cellsAndOver_c_1[21], cellsAndOver_c_1} - 23'h200000} * 47'hAAAAAB;
-  wire [21:0] cellsAndOver_1_1 =
-    io_in_level[0] ? _cellsAndOver_q_T_1[46:25] - 22'h200000 : cellsAndOver_c_1;
-  wire [14:0] _cellsAndOver_T_19 = io_in_level[0] ? _cellsAndOver_T_18 : _GEN_3;
-  wire [10:0] _GEN_10 = {raw_2_sExp[9], raw_2_sExp};
-  wire [10:0] _qs_t_T_2 = _GEN_10 - 11'h17;
-  wire [15:0] _GEN_11 = {{5{_qs_t_T_2[10]}}, _qs_t_T_2};
-  wire [15:0] cellsAndOver_t_2 = _GEN_11 - {_cellsAndOver_T_19[14], _cellsAndOver_T_19};
-  wire        cellsAndOver_left_2 = $signed(cellsAndOver_t_2) > -16'sh1;
-  wire [16:0] _cellsAndOver_rNeg_T_2 = 17'h0 - {cellsAndOver_t_2[15], cellsAndOver_t_2};
-  wire [4:0]  _cellsAndOver_rAmt_T_5 =
-    _cellsAndOver_rNeg_T_2 > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T_2[4:0];
-  wire [54:0] _GEN_12 = {31'h0, raw_2_sig};
-  wire [31:0] _cellsAndOver_sticky_T_10 = 32'h1 << _cellsAndOver_rAmt_T_5;
-  wire [54:0] _cellsAndOver_shiftedL_T_2 =
-    _GEN_12 << ($signed(cellsAndOver_t_2) > 16'sh17 ? 5'h17 : cellsAndOver_t_2[4:0]);
-  wire [48:0] cellsAndOver_m_2 =
-    {1'h0,
-     cellsAndOver_left_2
-       ? _cellsAndOver_shiftedL_T_2[47:0]
-       : {24'h0, raw_2_sig >> _cellsAndOver_rAmt_T_5}}
-    + {48'h0,
-       ~cellsAndOver_left_2 & (|(raw_2_sig & _cellsAndOver_sticky_T_10[23:0] - 24'h1))
-         & io_in_sphere_2[31]};
-  wire [21:0] cellsAndOver_c_2 =
-    raw_2_isZero
-      ? 22'h0
-      : io_in_sphere_2[31] ? 22'h0 - cellsAndOver_m_2[21:0] : cellsAndOver_m_2[21:0];
-  wire [46:0] _cellsAndOver_q_T_2 =
-    {24'h0, {cellsAndOver_c_2[21], cellsAndOver_c_2} - 23'h200000} * 47'hAAAAAB;
-  wire [21:0] cellsAndOver_2_1 =
-    io_in_level[0] ? _cellsAndOver_q_T_2[46:25] - 22'h200000 : cellsAndOver_c_2;
-  wire [14:0] _tq_T_1 = _GEN_3 - 15'h8;
-  wire [15:0] _GEN_13 = {_tq_T_1[14], _tq_T_1};
-  wire [15:0] qs_t = _GEN_5 - _GEN_13;
-  wire        qs_left = $signed(qs_t) > -16'sh1;
-  wire [16:0] _qs_rNeg_T = 17'h0 - {qs_t[15], qs_t};
-  wire [4:0]  _qs_rAmt_T_1 = _qs_rNeg_T > 17'h19 ? 5'h19 : _qs_rNeg_T[4:0];
-  wire [31:0] _qs_sticky_T = 32'h1 << _qs_rAmt_T_1;
-  wire [54:0] qs_shiftedL = _GEN_6 << ($signed(qs_t) > 16'sh1E ? 5'h1E : qs_t[4:0]);
-  wire [28:0] qs_m =
-    (qs_left ? qs_shiftedL[28:0] : {5'h0, raw_0_sig >> _qs_rAmt_T_1})
-    + {28'h0,
-       ~qs_left & (|(raw_0_sig & _qs_sticky_T[23:0] - 24'h1)) & io_in_sphere_0[31]};
-  wire [15:0] qs_t_1 = _GEN_8 - _GEN_13;
-  wire        qs_left_1 = $signed(qs_t_1) > -16'sh1;
-  wire [16:0] _qs_rNeg_T_1 = 17'h0 - {qs_t_1[15], qs_t_1};
-  wire [4:0]  _qs_rAmt_T_3 = _qs_rNeg_T_1 > 17'h19 ? 5'h19 : _qs_rNeg_T_1[4:0];
-  wire [31:0] _qs_sticky_T_5 = 32'h1 << _qs_rAmt_T_3;
-  wire [54:0] qs_shiftedL_1 = _GEN_9 << ($signed(qs_t_1) > 16'sh1E ? 5'h1E : qs_t_1[4:0]);
-  wire [28:0] qs_m_1 =
-    (qs_left_1 ? qs_shiftedL_1[28:0] : {5'h0, raw_1_sig >> _qs_rAmt_T_3})
-    + {28'h0,
-       ~qs_left_1 & (|(raw_1_sig & _qs_sticky_T_5[23:0] - 24'h1)) & io_in_sphere_1[31]};
-  wire [15:0] qs_t_2 = _GEN_11 - _GEN_13;
-  wire        qs_left_2 = $signed(qs_t_2) > -16'sh1;
-  wire [16:0] _qs_rNeg_T_2 = 17'h0 - {qs_t_2[15], qs_t_2};
-  wire [4:0]  _qs_rAmt_T_5 = _qs_rNeg_T_2 > 17'h19 ? 5'h19 : _qs_rNeg_T_2[4:0];
-  wire [31:0] _qs_sticky_T_10 = 32'h1 << _qs_rAmt_T_5;
-  wire [54:0] qs_shiftedL_2 =
-    _GEN_12 << ($signed(qs_t_2) > 16'sh1E ? 5'h1E : qs_t_2[4:0]);
-  wire [28:0] qs_m_2 =
-    (qs_left_2 ? qs_shiftedL_2[28:0] : {5'h0, raw_2_sig >> _qs_rAmt_T_5})
-    + {28'h0,
-       ~qs_left_2 & (|(raw_2_sig & _qs_sticky_T_10[23:0] - 24'h1)) & io_in_sphere_2[31]};
-  wire [85:0] _raw_subSig_T_7 =
-    {63'h0, io_in_sphere_3[22:0]} << {1'h0, raw_out_3_lz} + 6'h1;
-  wire [27:0] rNum =
-    {4'h0, raw_expZero_3 ? _raw_subSig_T_7[23:0] : {1'h1, io_in_sphere_3[22:0]}} * 28'h9;
-  wire [10:0] _GEN_14 = {raw_3_sExp[9], raw_3_sExp};
-  wire [10:0] _tq_T = _GEN_14 - 11'h1A;
-  wire [15:0] tq = {{5{_tq_T[10]}}, _tq_T} - _GEN_13;
-  wire [16:0] _qrRneg_T = 17'h0 - {tq[15], tq};
-  wire [4:0]  _qrR_T_1 = _qrRneg_T > 17'h1D ? 5'h1D : _qrRneg_T[4:0];
-  wire [31:0] _qrRight_T_1 = 32'h1 << _qrR_T_1;
-  wire [58:0] qrWide =
-    $signed(tq) > -16'sh1
-      ? {31'h0, rNum} << ($signed(tq) > 16'sh1D ? 5'h1D : tq[4:0])
-      : {30'h0, {1'h0, rNum >> _qrR_T_1} + {28'h0, |(rNum & _qrRight_T_1[27:0] - 28'h1)}};
-  wire        _io_out_needNone_T =
-    raw_expZero_3 & ~(|(io_in_sphere_3[22:0])) | io_in_sphere_3[31];
-  wire [28:0] _x_T_1 = {rNum, 1'h0} - 29'h1;
-  wire [3:0]  _lead_T_47 =
-    (|(_x_T_1[28:16]))
-      ? {|(_x_T_1[28:24]),
-         (|(_x_T_1[28:24]))
-           ? {_x_T_1[28],
-              _x_T_1[28]
-                ? 2'h0
-                : _x_T_1[27] ? 2'h3 : _x_T_1[26] ? 2'h2 : {1'h0, _x_T_1[25]}}
-           : {|(_x_T_1[23:20]),
-              (|(_x_T_1[23:20]))
-                ? (_x_T_1[23] ? 2'h3 : _x_T_1[22] ? 2'h2 : {1'h0, _x_T_1[21]})
-                : _x_T_1[19] ? 2'h3 : _x_T_1[18] ? 2'h2 : {1'h0, _x_T_1[17]}}}
-      : {|(_x_T_1[15:8]),
-         (|(_x_T_1[15:8]))
-           ? {|(_x_T_1[15:12]),
-              (|(_x_T_1[15:12]))
-                ? (_x_T_1[15] ? 2'h3 : _x_T_1[14] ? 2'h2 : {1'h0, _x_T_1[13]})
-                : _x_T_1[11] ? 2'h3 : _x_T_1[10] ? 2'h2 : {1'h0, _x_T_1[9]}}
-           : {|(_x_T_1[7:4]),
-              (|(_x_T_1[7:4]))
-                ? (_x_T_1[7] ? 2'h3 : _x_T_1[6] ? 2'h2 : {1'h0, _x_T_1[5]})
-                : _x_T_1[3] ? 2'h3 : _x_T_1[2] ? 2'h2 : {1'h0, _x_T_1[1]}}};
-  wire [10:0] _needK_T = _GEN_14 - 11'h17;
-  wire [11:0] _needK_T_3 =
-    {_needK_T[10], _needK_T} + {6'h0, {1'h0, |(_x_T_1[28:16]), _lead_T_47} + 6'h1};
-  wire [10:0] coordTops_0_2 = _GEN_4 + 11'h1;
-  wire [10:0] coordTops_1_2 = _GEN_7 + 11'h1;
-  wire [10:0] coordTops_2_2 = _GEN_10 + 11'h1;
-  wire        _GEN_15 = raw_0_isZero & raw_1_isZero;
-  wire [10:0] _GEN_16 =
-    raw_0_isZero | ~(raw_1_isZero | $signed(coordTops_0_2) > $signed(coordTops_1_2))
-      ? coordTops_1_2
-      : coordTops_0_2;
-  wire [10:0] top =
-    _GEN_15 | ~(raw_2_isZero | $signed(_GEN_16) > $signed(coordTops_2_2))
-      ? coordTops_2_2
-      : _GEN_16;
-  wire [28:0] _oddFits_T_2 = _x_T_1 >> {|(_x_T_1[28:16]), _lead_T_47} - 5'h1;
+  wire [14:0] _GEN_3 = {io_in_level[13], io_in_level};
+  wire [14:0] _cellOff0_T_2 = _GEN_3 + 15'h2F;
+  wire [14:0] _cellOff0_T = _GEN_3 + 15'h2B;
+  wire [13:0] cellOff0 = io_in_level[0] ? _cellOff0_T[14:1] : _cellOff0_T_2[14:1];
+  wire [14:0] _qOff0_T = _GEN_3 + 15'h1F;
+  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, raw_r_0_e} - 9'h7F;
+  wire [8:0]  _raw_out_sExp_T_6 = {1'h0, raw_r_1_e} - 9'h7F;
+  wire [8:0]  _raw_out_sExp_T_11 = {1'h0, raw_r_2_e} - 9'h7F;
+  wire [8:0]  _raw_out_sExp_T_16 = {1'h0, raw_r_3_e} - 9'h7F;
+  wire [14:0] _GEN_4 = {{5{rawE_0_sExp[9]}}, rawE_0_sExp};
+  wire [21:0] scaled_0_1 =
+    scaled_vS_isZero ? 22'h0 : scaled_vS_sign ? 22'h0 - scaled_low : scaled_low;
+  wire [14:0] _GEN_5 = {{5{rawE_1_sExp[9]}}, rawE_1_sExp};
+  wire [21:0] scaled_1_1 =
+    scaled_vS_1_isZero ? 22'h0 : scaled_vS_1_sign ? 22'h0 - scaled_low_1 : scaled_low_1;
+  wire [14:0] _GEN_6 = {{5{rawE_2_sExp[9]}}, rawE_2_sExp};
+  wire [21:0] scaled_2_1 =
+    scaled_vS_2_isZero ? 22'h0 : scaled_vS_2_sign ? 22'h0 - scaled_low_2 : scaled_low_2;
+  wire [58:0] qrWide = qrWide_r_2 ? qrWide_r_3 : {30'h0, qrWide_r_4};
+  wire [10:0] top = {top_r[9], top_r} + 11'h1;
+  wire [85:0] _raw_subSig_T_1 = {63'h0, raw_r_0_frac} << {1'h0, raw_r_0_lz} + 6'h1;
+  wire [85:0] _raw_subSig_T_3 = {63'h0, raw_r_1_frac} << {1'h0, raw_r_1_lz} + 6'h1;
+  wire [85:0] _raw_subSig_T_5 = {63'h0, raw_r_2_frac} << {1'h0, raw_r_2_lz} + 6'h1;
+  wire [85:0] _raw_subSig_T_7 = {63'h0, raw_r_3_frac} << {1'h0, raw_r_3_lz} + 6'h1;
+  wire [54:0] _scaled_shiftedL_T = {31'h0, scaled_v_sig} << scaled_lA;
+  wire [54:0] _scaled_sticky_T = 55'hFFFFFF << scaled_rA;
+  wire [54:0] _scaled_shiftedL_T_1 = {31'h0, scaled_v_1_sig} << scaled_lA_1;
+  wire [54:0] _scaled_sticky_T_4 = 55'hFFFFFF << scaled_rA_1;
+  wire [54:0] _scaled_shiftedL_T_2 = {31'h0, scaled_v_2_sig} << scaled_lA_2;
+  wire [54:0] _scaled_sticky_T_8 = 55'hFFFFFF << scaled_rA_2;
+  wire [46:0] _cellsAndOver_cell_q_T = {24'h0, cellsAndOver_cell_q_r} * 47'hAAAAAB;
+  wire [46:0] _cellsAndOver_cell_q_T_2 = {24'h0, cellsAndOver_cell_q_r_1} * 47'hAAAAAB;
+  wire [46:0] _cellsAndOver_cell_q_T_4 = {24'h0, cellsAndOver_cell_q_r_2} * 47'hAAAAAB;
+  wire [54:0] _qs_sticky_T = 55'hFFFFFF << qs_rA;
+  wire [54:0] _qs_sticky_T_4 = 55'hFFFFFF << qs_rA_1;
+  wire [54:0] _qs_sticky_T_8 = 55'hFFFFFF << qs_rA_2;
+  wire [14:0] _qrOff0_T = _GEN_3 + 15'h25;
+  wire [58:0] _qrRight_T_1 = 59'hFFFFFFF << qrRS;
+  wire [29:0] _oddFits_T_1 = {oddFits_r, 1'h0} >> lead;
   always @(posedge clock) begin
-    if (reset)
-      io_out_valid_r <= 1'h0;
-    else
-      io_out_valid_r <= io_in_valid;
-    r_0 <= cellsAndOver_0_1[19:0];
-    r_1 <= cellsAndOver_1_1[19:0];
-    r_2 <= cellsAndOver_2_1[19:0];
-    io_out_cellOverflow_r <=
-      ~raw_0_isZero & (|(cellsAndOver_m[48:21])) | $signed(cellsAndOver_0_1) > 22'sh7FFFE
-      | $signed(cellsAndOver_0_1) < -22'sh7FFFE | ~raw_1_isZero
-      & (|(cellsAndOver_m_1[48:21])) | $signed(cellsAndOver_1_1) > 22'sh7FFFE
-      | $signed(cellsAndOver_1_1) < -22'sh7FFFE | ~raw_2_isZero
-      & (|(cellsAndOver_m_2[48:21])) | $signed(cellsAndOver_2_1) > 22'sh7FFFE
-      | $signed(cellsAndOver_2_1) < -22'sh7FFFE;
-    r_1_0 <= raw_0_isZero ? 29'h0 : io_in_sphere_0[31] ? 29'h0 - qs_m : qs_m;
-    r_1_1 <= raw_1_isZero ? 29'h0 : io_in_sphere_1[31] ? 29'h0 - qs_m_1 : qs_m_1;
-    r_1_2 <= raw_2_isZero ? 29'h0 : io_in_sphere_2[31] ? 29'h0 - qs_m_2 : qs_m_2;
-    io_out_qr_r <=
-      _io_out_needNone_T ? 29'h0 : (|(qrWide[58:29])) ? 29'h1FFFFFFF : qrWide[28:0];
-    io_out_need_r <=
-      {{_needK_T_3[11], _needK_T_3} - 13'h3, 1'h0} - {13'h0, ~(_oddFits_T_2[0])};
-    io_out_needNone_r <= _io_out_needNone_T;
-    io_out_nonFinite_r <=
+    raw_r_0_isZero <= cls_expZero & ~(|(io_in_sphere_0[22:0]));
+    raw_r_0_sign <= io_in_sphere_0[31];
+    raw_r_0_expZero <= cls_expZero;
+    raw_r_0_e <= io_in_sphere_0[30:23];
+    raw_r_0_frac <= io_in_sphere_0[22:0];
+    raw_r_0_lz <=
+      io_in_sphere_0[22]
+        ? 5'h0
+        : io_in_sphere_0[21]
+            ? 5'h1
+            : io_in_sphere_0[20]
+                ? 5'h2
+                : io_in_sphere_0[19]
+                    ? 5'h3
+                    : io_in_sphere_0[18]
+                        ? 5'h4
+                        : io_in_sphere_0[17]
+                            ? 5'h5
+                            : io_in_sphere_0[16]
+                                ? 5'h6
+                                : io_in_sphere_0[15]
+                                    ? 5'h7
+                                    : io_in_sphere_0[14]
+                                        ? 5'h8
+                                        : io_in_sphere_0[13]
+                                            ? 5'h9
+                                            : io_in_sphere_0[12]
+                                                ? 5'hA
+                                                : io_in_sphere_0[11]
+                                                    ? 5'hB
+                                                    : io_in_sphere_0[10]
+                                                        ? 5'hC
+                                                        : io_in_sphere_0[9]
+                                                            ? 5'hD
+                                                            : _GEN[0]
+                                                                ? 5'hE
+                                                                : _GEN[1]
+                                                                    ? 5'hF
+                                                                    : _GEN[2]
+                                                                        ? 5'h10
+                                                                        : _GEN[3]
+                                                                            ? 5'h11
+                                                                            : io_in_sphere_0[4]
+                                                                                ? 5'h12
+                                                                                : io_in_sphere_0[3]
+                                                                                    ? 5'h13
+                                                                                    : io_in_sphere_0[2]
+                                                                                        ? 5'h14
+                                                                                        : io_in_sphere_0[1]
+                                                                                            ? 5'h15
+                                                                                            : 5'h16;
+    raw_r_1_isZero <= cls_1_expZero & ~(|(io_in_sphere_1[22:0]));
+    raw_r_1_sign <= io_in_sphere_1[31];
+    raw_r_1_expZero <= cls_1_expZero;
+    raw_r_1_e <= io_in_sphere_1[30:23];
+    raw_r_1_frac <= io_in_sphere_1[22:0];
+    raw_r_1_lz <=
+      io_in_sphere_1[22]
+        ? 5'h0
+        : io_in_sphere_1[21]
+            ? 5'h1
+            : io_in_sphere_1[20]
+                ? 5'h2
+                : io_in_sphere_1[19]
+                    ? 5'h3
+                    : io_in_sphere_1[18]
+                        ? 5'h4
+                        : io_in_sphere_1[17]
+                            ? 5'h5
+                            : io_in_sphere_1[16]
+                                ? 5'h6
+                                : io_in_sphere_1[15]
+                                    ? 5'h7
+                                    : io_in_sphere_1[14]
+                                        ? 5'h8
+                                        : io_in_sphere_1[13]
+                                            ? 5'h9
+                                            : io_in_sphere_1[12]
+                                                ? 5'hA
+                                                : io_in_sphere_1[11]
+                                                    ? 5'hB
+                                                    : io_in_sphere_1[10]
+                                                        ? 5'hC
+                                                        : io_in_sphere_1[9]
+                                                            ? 5'hD
+                                                            : _GEN_0[0]
+                                                                ? 5'hE
+                                                                : _GEN_0[1]
+                                                                    ? 5'hF
+                                                                    : _GEN_0[2]
+                                                                        ? 5'h10
+                                                                        : _GEN_0[3]
+                                                                            ? 5'h11
+                                                                            : io_in_sphere_1[4]
+                                                                                ? 5'h12
+                                                                                : io_in_sphere_1[3]
+                                                                                    ? 5'h13
+                                                                                    : io_in_sphere_1[2]
+                                                                                        ? 5'h14
+                                                                                        : io_in_sphere_1[1]
+                                                                                            ? 5'h15
+                                                                                            : 5'h16;
+    raw_r_2_isZero <= cls_2_expZero & ~(|(io_in_sphere_2[22:0]));
+    raw_r_2_sign <= io_in_sphere_2[31];
+    raw_r_2_expZero <= cls_2_expZero;
+    raw_r_2_e <= io_in_sphere_2[30:23];
+    raw_r_2_frac <= io_in_sphere_2[22:0];
+    raw_r_2_lz <=
+      io_in_sphere_2[22]
+        ? 5'h0
+        : io_in_sphere_2[21]
+            ? 5'h1
+            : io_in_sphere_2[20]
+                ? 5'h2
+                : io_in_sphere_2[19]
+                    ? 5'h3
+                    : io_in_sphere_2[18]
+                        ? 5'h4
+                        : io_in_sphere_2[17]
+                            ? 5'h5
+                            : io_in_sphere_2[16]
+                                ? 5'h6
+                                : io_in_sphere_2[15]
+                                    ? 5'h7
+                                    : io_in_sphere_2[14]
+                                        ? 5'h8
+                                        : io_in_sphere_2[13]
+                                            ? 5'h9
+                                            : io_in_sphere_2[12]
+                                                ? 5'hA
+                                                : io_in_sphere_2[11]
+                                                    ? 5'hB
+                                                    : io_in_sphere_2[10]
+                                                        ? 5'hC
+                                                        : io_in_sphere_2[9]
+                                                            ? 5'hD
+                                                            : _GEN_1[0]
+                                                                ? 5'hE
+                                                                : _GEN_1[1]
+                                                                    ? 5'hF
+                                                                    : _GEN_1[2]
+                                                                        ? 5'h10
+                                                                        : _GEN_1[3]
+                                                                            ? 5'h11
+                                                                            : io_in_sphere_2[4]
+                                                                                ? 5'h12
+                                                                                : io_in_sphere_2[3]
+                                                                                    ? 5'h13
+                                                                                    : io_in_sphere_2[2]
+                                                                                        ? 5'h14
+                                                                                        : io_in_sphere_2[1]
+                                                                                            ? 5'h15
+                                                                                            : 5'h16;
+    raw_r_3_isZero <= cls_3_expZero & ~(|(io_in_sphere_3[22:0]));
+    raw_r_3_sign <= io_in_sphere_3[31];
+    raw_r_3_expZero <= cls_3_expZero;
+    raw_r_3_e <= io_in_sphere_3[30:23];
+    raw_r_3_frac <= io_in_sphere_3[22:0];
+    raw_r_3_lz <=
+      io_in_sphere_3[22]
+        ? 5'h0
+        : io_in_sphere_3[21]
+            ? 5'h1
+            : io_in_sphere_3[20]
+                ? 5'h2
+                : io_in_sphere_3[19]
+                    ? 5'h3
+                    : io_in_sphere_3[18]
+                        ? 5'h4
+                        : io_in_sphere_3[17]
+                            ? 5'h5
+                            : io_in_sphere_3[16]
+                                ? 5'h6
+                                : io_in_sphere_3[15]
+                                    ? 5'h7
+                                    : io_in_sphere_3[14]
+                                        ? 5'h8
+                                        : io_in_sphere_3[13]
+                                            ? 5'h9
+                                            : io_in_sphere_3[12]
+                                                ? 5'hA
+                                                : io_in_sphere_3[11]
+                                                    ? 5'hB
+                                                    : io_in_sphere_3[10]
+                                                        ? 5'hC
+                                                        : io_in_sphere_3[9]
+                                                            ? 5'hD
+                                                            : _GEN_2[0]
+                                                                ? 5'hE
+                                                                : _GEN_2[1]
+                                                                    ? 5'hF
+                                                                    : _GEN_2[2]
+                                                                        ? 5'h10
+                                                                        : _GEN_2[3]
+                                                                            ? 5'h11
+                                                                            : io_in_sphere_3[4]
+                                                                                ? 5'h12
+                                                                                : io_in_sphere_3[3]
+                                                                                    ? 5'h13
+                                                                                    : io_in_sphere_3[2]
+                                                                                        ? 5'h14
+                                                                                        : io_in_sphere_3[1]
+                                                                                            ? 5'h15
+                                                                                            : 5'h16;
+    rawE_0_isZero <= raw_r_0_isZero;
+    rawE_0_sign <= raw_r_0_sign;
+    rawE_0_sExp <=
+      raw_r_0_expZero
+        ? 10'h381 - {5'h0, raw_r_0_lz}
+        : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
+    rawE_0_sig <= raw_r_0_expZero ? _raw_subSig_T_1[23:0] : {1'h1, raw_r_0_frac};
+    rawE_1_isZero <= raw_r_1_isZero;
+    rawE_1_sign <= raw_r_1_sign;
+    rawE_1_sExp <=
+      raw_r_1_expZero
+        ? 10'h381 - {5'h0, raw_r_1_lz}
+        : {_raw_out_sExp_T_6[8], _raw_out_sExp_T_6};
+    rawE_1_sig <= raw_r_1_expZero ? _raw_subSig_T_3[23:0] : {1'h1, raw_r_1_frac};
+    rawE_2_isZero <= raw_r_2_isZero;
+    rawE_2_sign <= raw_r_2_sign;
+    rawE_2_sExp <=
+      raw_r_2_expZero
+        ? 10'h381 - {5'h0, raw_r_2_lz}
+        : {_raw_out_sExp_T_11[8], _raw_out_sExp_T_11};
+    rawE_2_sig <= raw_r_2_expZero ? _raw_subSig_T_5[23:0] : {1'h1, raw_r_2_frac};
+    rawE_3_isZero <= raw_r_3_isZero;
+    rawE_3_sign <= raw_r_3_sign;
+    rawE_3_sExp <=
+      raw_r_3_expZero
+        ? 10'h381 - {5'h0, raw_r_3_lz}
+        : {_raw_out_sExp_T_16[8], _raw_out_sExp_T_16};
+    rawE_3_sig <= raw_r_3_expZero ? _raw_subSig_T_7[23:0] : {1'h1, raw_r_3_frac};
+    nonFinite_r <=
       (&(io_in_sphere_0[30:23])) & (|(io_in_sphere_0[22:0])) | (&(io_in_sphere_0[30:23]))
       & ~(|(io_in_sphere_0[22:0])) | (&(io_in_sphere_1[30:23]))
       & (|(io_in_sphere_1[22:0])) | (&(io_in_sphere_1[30:23]))
@@ -87516,23 +88797,339 @@ module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
       & ~(|(io_in_sphere_2[22:0])) | (&(io_in_sphere_3[30:23]))
       & (|(io_in_sphere_3[22:0])) | (&(io_in_sphere_3[30:23]))
       & ~(|(io_in_sphere_3[22:0]));
+    nonFinite_r_1 <= nonFinite_r;
+    nonFinite_r_2 <= nonFinite_r_1;
+    nonFinite_r_3 <= nonFinite_r_2;
+    nonFinite_r_4 <= nonFinite_r_3;
+    nonFinite_r_5 <= nonFinite_r_4;
+    nonFinite_r_6 <= nonFinite_r_5;
+    nonFinite_r_7 <= nonFinite_r_6;
+    nonFinite <= nonFinite_r_7;
+    scaled_r <= cellOff0;
+    scaled_r_1 <= scaled_r;
+    scaled_t <= _GEN_4 - {scaled_r_1[13], scaled_r_1};
+    scaled_v_r_isZero <= rawE_0_isZero;
+    scaled_v_r_sign <= rawE_0_sign;
+    scaled_v_r_sig <= rawE_0_sig;
+    scaled_v_isZero <= scaled_v_r_isZero;
+    scaled_v_sign <= scaled_v_r_sign;
+    scaled_v_sig <= scaled_v_r_sig;
+    scaled_l <= $signed(scaled_t) > -15'sh1;
+    scaled_lA <= $signed(scaled_t) > 15'sh17 ? 5'h17 : scaled_t[4:0];
+    scaled_rA <= $signed(scaled_t) < -15'sh19 ? 5'h19 : 5'h0 - scaled_t[4:0];
+    scaled_mag <=
+      scaled_l ? _scaled_shiftedL_T[47:0] : {24'h0, scaled_v_sig >> scaled_rA};
+    scaled_up <=
+      ~scaled_l & (|(scaled_v_sig & ~(_scaled_sticky_T[23:0]))) & scaled_v_sign;
+    scaled_low <= scaled_mag[21:0] + {21'h0, scaled_up};
+    scaled_over <= (|(scaled_mag[47:21])) | (&(scaled_mag[20:0])) & scaled_up;
+    scaled_vS_r_isZero <= scaled_v_isZero;
+    scaled_vS_r_sign <= scaled_v_sign;
+    scaled_vS_isZero <= scaled_vS_r_isZero;
+    scaled_vS_sign <= scaled_vS_r_sign;
+    scaled_r_2 <= cellOff0;
+    scaled_r_3 <= scaled_r_2;
+    scaled_t_1 <= _GEN_5 - {scaled_r_3[13], scaled_r_3};
+    scaled_v_r_1_isZero <= rawE_1_isZero;
+    scaled_v_r_1_sign <= rawE_1_sign;
+    scaled_v_r_1_sig <= rawE_1_sig;
+    scaled_v_1_isZero <= scaled_v_r_1_isZero;
+    scaled_v_1_sign <= scaled_v_r_1_sign;
+    scaled_v_1_sig <= scaled_v_r_1_sig;
+    scaled_l_1 <= $signed(scaled_t_1) > -15'sh1;
+    scaled_lA_1 <= $signed(scaled_t_1) > 15'sh17 ? 5'h17 : scaled_t_1[4:0];
+    scaled_rA_1 <= $signed(scaled_t_1) < -15'sh19 ? 5'h19 : 5'h0 - scaled_t_1[4:0];
+    scaled_mag_1 <=
+      scaled_l_1 ? _scaled_shiftedL_T_1[47:0] : {24'h0, scaled_v_1_sig >> scaled_rA_1};
+    scaled_up_1 <=
+      ~scaled_l_1 & (|(scaled_v_1_sig & ~(_scaled_sticky_T_4[23:0]))) & scaled_v_1_sign;
+    scaled_low_1 <= scaled_mag_1[21:0] + {21'h0, scaled_up_1};
+    scaled_over_1 <= (|(scaled_mag_1[47:21])) | (&(scaled_mag_1[20:0])) & scaled_up_1;
+    scaled_vS_r_1_isZero <= scaled_v_1_isZero;
+    scaled_vS_r_1_sign <= scaled_v_1_sign;
+    scaled_vS_1_isZero <= scaled_vS_r_1_isZero;
+    scaled_vS_1_sign <= scaled_vS_r_1_sign;
+    scaled_r_4 <= cellOff0;
+    scaled_r_5 <= scaled_r_4;
+    scaled_t_2 <= _GEN_6 - {scaled_r_5[13], scaled_r_5};
+    scaled_v_r_2_isZero <= rawE_2_isZero;
+    scaled_v_r_2_sign <= rawE_2_sign;
+    scaled_v_r_2_sig <= rawE_2_sig;
+    scaled_v_2_isZero <= scaled_v_r_2_isZero;
+    scaled_v_2_sign <= scaled_v_r_2_sign;
+    scaled_v_2_sig <= scaled_v_r_2_sig;
+    scaled_l_2 <= $signed(scaled_t_2) > -15'sh1;
+    scaled_lA_2 <= $signed(scaled_t_2) > 15'sh17 ? 5'h17 : scaled_t_2[4:0];
+    scaled_rA_2 <= $signed(scaled_t_2) < -15'sh19 ? 5'h19 : 5'h0 - scaled_t_2[4:0];
+    scaled_mag_2 <=
+      scaled_l_2 ? _scaled_shiftedL_T_2[47:0] : {24'h0, scaled_v_2_sig >> scaled_rA_2};
+    scaled_up_2 <=
+      ~scaled_l_2 & (|(scaled_v_2_sig & ~(_scaled_sticky_T_8[23:0]))) & scaled_v_2_sign;
+    scaled_low_2 <= scaled_mag_2[21:0] + {21'h0, scaled_up_2};
+    scaled_over_2 <= (|(scaled_mag_2[47:21])) | (&(scaled_mag_2[20:0])) & scaled_up_2;
+    scaled_vS_r_2_isZero <= scaled_v_2_isZero;
+    scaled_vS_r_2_sign <= scaled_v_2_sign;
+    scaled_vS_2_isZero <= scaled_vS_r_2_isZero;
+    scaled_vS_2_sign <= scaled_vS_r_2_sign;
+    oddB_r <= io_in_level[0];
+    oddB_r_1 <= oddB_r;
+    oddB_r_2 <= oddB_r_1;
+    oddB_r_3 <= oddB_r_2;
+    oddB_r_4 <= oddB_r_3;
+    oddB_r_5 <= oddB_r_4;
+    oddB <= oddB_r_5;
+    cellsAndOver_plain_r <= scaled_0_1;
+    cellsAndOver_plain_r_1 <= cellsAndOver_plain_r;
+    cellsAndOver_plain <= cellsAndOver_plain_r_1;
+    cellsAndOver_cell_u_r <= scaled_0_1;
+    cellsAndOver_cell_q_r <=
+      {cellsAndOver_cell_u_r[21], cellsAndOver_cell_u_r} - 23'h200000;
+    cellsAndOver_cell_r <= oddB;
+    cellsAndOver_cell_r_1 <= cellsAndOver_cell_r;
+    cellsAndOver_cell_r_2 <= _cellsAndOver_cell_q_T[46:25];
+    cellsAndOver_cB <= scaled_0_1;
+    cellsAndOver_r <= ~scaled_vS_isZero & scaled_over;
+    cellsAndOver_r_1 <=
+      cellsAndOver_r
+      | (oddB
+           ? $signed(cellsAndOver_cB) > 22'sh17FFFC
+             | $signed(cellsAndOver_cB) < -22'sh17FFFA
+           : $signed(cellsAndOver_cB) > 22'sh7FFFE
+             | $signed(cellsAndOver_cB) < -22'sh7FFFE);
+    cellsAndOver_0_2 <= cellsAndOver_r_1;
+    cellsAndOver_plain_r_2 <= scaled_1_1;
+    cellsAndOver_plain_r_3 <= cellsAndOver_plain_r_2;
+    cellsAndOver_plain_1 <= cellsAndOver_plain_r_3;
+    cellsAndOver_cell_u_r_1 <= scaled_1_1;
+    cellsAndOver_cell_q_r_1 <=
+      {cellsAndOver_cell_u_r_1[21], cellsAndOver_cell_u_r_1} - 23'h200000;
+    cellsAndOver_cell_r_3 <= oddB;
+    cellsAndOver_cell_r_4 <= cellsAndOver_cell_r_3;
+    cellsAndOver_cell_r_5 <= _cellsAndOver_cell_q_T_2[46:25];
+    cellsAndOver_cB_1 <= scaled_1_1;
+    cellsAndOver_r_2 <= ~scaled_vS_1_isZero & scaled_over_1;
+    cellsAndOver_r_3 <=
+      cellsAndOver_r_2
+      | (oddB
+           ? $signed(cellsAndOver_cB_1) > 22'sh17FFFC
+             | $signed(cellsAndOver_cB_1) < -22'sh17FFFA
+           : $signed(cellsAndOver_cB_1) > 22'sh7FFFE
+             | $signed(cellsAndOver_cB_1) < -22'sh7FFFE);
+    cellsAndOver_1_2 <= cellsAndOver_r_3;
+    cellsAndOver_plain_r_4 <= scaled_2_1;
+    cellsAndOver_plain_r_5 <= cellsAndOver_plain_r_4;
+    cellsAndOver_plain_2 <= cellsAndOver_plain_r_5;
+    cellsAndOver_cell_u_r_2 <= scaled_2_1;
+    cellsAndOver_cell_q_r_2 <=
+      {cellsAndOver_cell_u_r_2[21], cellsAndOver_cell_u_r_2} - 23'h200000;
+    cellsAndOver_cell_r_6 <= oddB;
+    cellsAndOver_cell_r_7 <= cellsAndOver_cell_r_6;
+    cellsAndOver_cell_r_8 <= _cellsAndOver_cell_q_T_4[46:25];
+    cellsAndOver_cB_2 <= scaled_2_1;
+    cellsAndOver_r_4 <= ~scaled_vS_2_isZero & scaled_over_2;
+    cellsAndOver_r_5 <=
+      cellsAndOver_r_4
+      | (oddB
+           ? $signed(cellsAndOver_cB_2) > 22'sh17FFFC
+             | $signed(cellsAndOver_cB_2) < -22'sh17FFFA
+           : $signed(cellsAndOver_cB_2) > 22'sh7FFFE
+             | $signed(cellsAndOver_cB_2) < -22'sh7FFFE);
+    cellsAndOver_2_2 <= cellsAndOver_r_5;
+    qs_r <= _qOff0_T[14:1];
+    qs_r_1 <= qs_r;
+    qs_t <= _GEN_4 - {qs_r_1[13], qs_r_1};
+    qs_v_r_isZero <= rawE_0_isZero;
+    qs_v_r_sign <= rawE_0_sign;
+    qs_v_r_sig <= rawE_0_sig;
+    qs_v_isZero <= qs_v_r_isZero;
+    qs_v_sign <= qs_v_r_sign;
+    qs_v_sig <= qs_v_r_sig;
+    qs_l <= $signed(qs_t) > -15'sh1;
+    qs_lA <= $signed(qs_t) > 15'sh1E ? 5'h1E : qs_t[4:0];
+    qs_rA <= $signed(qs_t) < -15'sh19 ? 5'h19 : 5'h0 - qs_t[4:0];
+    qs_mag <= qs_l ? {31'h0, qs_v_sig} << qs_lA : {31'h0, qs_v_sig >> qs_rA};
+    qs_up <= ~qs_l & (|(qs_v_sig & ~(_qs_sticky_T[23:0]))) & qs_v_sign;
+    qs_low <= qs_mag[28:0] + {28'h0, qs_up};
+    qs_vS_r_isZero <= qs_v_isZero;
+    qs_vS_r_sign <= qs_v_sign;
+    qs_vS_isZero <= qs_vS_r_isZero;
+    qs_vS_sign <= qs_vS_r_sign;
+    qs_r_2 <= _qOff0_T[14:1];
+    qs_r_3 <= qs_r_2;
+    qs_t_1 <= _GEN_5 - {qs_r_3[13], qs_r_3};
+    qs_v_r_1_isZero <= rawE_1_isZero;
+    qs_v_r_1_sign <= rawE_1_sign;
+    qs_v_r_1_sig <= rawE_1_sig;
+    qs_v_1_isZero <= qs_v_r_1_isZero;
+    qs_v_1_sign <= qs_v_r_1_sign;
+    qs_v_1_sig <= qs_v_r_1_sig;
+    qs_l_1 <= $signed(qs_t_1) > -15'sh1;
+    qs_lA_1 <= $signed(qs_t_1) > 15'sh1E ? 5'h1E : qs_t_1[4:0];
+    qs_rA_1 <= $signed(qs_t_1) < -15'sh19 ? 5'h19 : 5'h0 - qs_t_1[4:0];
+    qs_mag_1 <= qs_l_1 ? {31'h0, qs_v_1_sig} << qs_lA_1 : {31'h0, qs_v_1_sig >> qs_rA_1};
+    qs_up_1 <= ~qs_l_1 & (|(qs_v_1_sig & ~(_qs_sticky_T_4[23:0]))) & qs_v_1_sign;
+    qs_low_1 <= qs_mag_1[28:0] + {28'h0, qs_up_1};
+    qs_vS_r_1_isZero <= qs_v_1_isZero;
+    qs_vS_r_1_sign <= qs_v_1_sign;
+    qs_vS_1_isZero <= qs_vS_r_1_isZero;
+    qs_vS_1_sign <= qs_vS_r_1_sign;
+    qs_r_4 <= _qOff0_T[14:1];
+    qs_r_5 <= qs_r_4;
+    qs_t_2 <= _GEN_6 - {qs_r_5[13], qs_r_5};
+    qs_v_r_2_isZero <= rawE_2_isZero;
+    qs_v_r_2_sign <= rawE_2_sign;
+    qs_v_r_2_sig <= rawE_2_sig;
+    qs_v_2_isZero <= qs_v_r_2_isZero;
+    qs_v_2_sign <= qs_v_r_2_sign;
+    qs_v_2_sig <= qs_v_r_2_sig;
+    qs_l_2 <= $signed(qs_t_2) > -15'sh1;
+    qs_lA_2 <= $signed(qs_t_2) > 15'sh1E ? 5'h1E : qs_t_2[4:0];
+    qs_rA_2 <= $signed(qs_t_2) < -15'sh19 ? 5'h19 : 5'h0 - qs_t_2[4:0];
+    qs_mag_2 <= qs_l_2 ? {31'h0, qs_v_2_sig} << qs_lA_2 : {31'h0, qs_v_2_sig >> qs_rA_2};
+    qs_up_2 <= ~qs_l_2 & (|(qs_v_2_sig & ~(_qs_sticky_T_8[23:0]))) & qs_v_2_sign;
+    qs_low_2 <= qs_mag_2[28:0] + {28'h0, qs_up_2};
+    qs_vS_r_2_isZero <= qs_v_2_isZero;
+    qs_vS_r_2_sign <= qs_v_2_sign;
+    qs_vS_2_isZero <= qs_vS_r_2_isZero;
+    qs_vS_2_sign <= qs_vS_r_2_sign;
+    tq_r <= _qrOff0_T[14:1];
+    tq_r_1 <= tq_r;
+    tq <= {{5{rawE_3_sExp[9]}}, rawE_3_sExp} - {tq_r_1[13], tq_r_1};
+    rA_isZero <= rawE_3_isZero;
+    rA_sign <= rawE_3_sign;
+    rA_sExp <= rawE_3_sExp;
+    rA_sig <= rawE_3_sig;
+    rNumS <= {4'h0, rA_sig} * 28'h9;
+    qrLS <= $signed(tq) > 15'sh1D ? 5'h1D : tq[4:0];
+    qrRS <= $signed(tq) < -15'sh1D ? 5'h1D : 5'h0 - tq[4:0];
+    qrLeft <= {31'h0, rNumS} << qrLS;
+    qrRight_r <= rNumS >> qrRS;
+    qrRight_r_1 <= |(rNumS & ~(_qrRight_T_1[27:0]));
+    qrWide_r <= $signed(tq) > -15'sh1;
+    qrWide_r_1 <= qrWide_r;
+    qrWide_r_2 <= qrWide_r_1;
+    qrWide_r_3 <= qrLeft;
+    qrWide_r_4 <= {1'h0, qrRight_r} + {28'h0, qrRight_r_1};
+    rNone_r <= rA_isZero | rA_sign;
+    rNone_r_1 <= rNone_r;
+    rNone <= rNone_r_1;
+    x <= {rNumS, 1'h0} - 29'h1;
+    lead <=
+      {|(x[28:16]),
+       (|(x[28:16]))
+         ? {|(x[28:24]),
+            (|(x[28:24]))
+              ? {x[28], x[28] ? 2'h0 : x[27] ? 2'h3 : x[26] ? 2'h2 : {1'h0, x[25]}}
+              : {|(x[23:20]),
+                 (|(x[23:20]))
+                   ? (x[23] ? 2'h3 : x[22] ? 2'h2 : {1'h0, x[21]})
+                   : x[19] ? 2'h3 : x[18] ? 2'h2 : {1'h0, x[17]}}}
+         : {|(x[15:8]),
+            (|(x[15:8]))
+              ? {|(x[15:12]),
+                 (|(x[15:12]))
+                   ? (x[15] ? 2'h3 : x[14] ? 2'h2 : {1'h0, x[13]})
+                   : x[11] ? 2'h3 : x[10] ? 2'h2 : {1'h0, x[9]}}
+              : {|(x[7:4]),
+                 (|(x[7:4]))
+                   ? (x[7] ? 2'h3 : x[6] ? 2'h2 : {1'h0, x[5]})
+                   : x[3] ? 2'h3 : x[2] ? 2'h2 : {1'h0, x[1]}}}};
+    eOff_r <= {rA_sExp[9], rA_sExp} - 11'h19;
+    eOff_r_1 <= eOff_r;
+    eOff <= eOff_r_1;
+    needK <= {eOff[10], eOff} + {7'h0, lead};
+    oddFits_r <= x;
+    oddFits <= ~(_oddFits_T_1[0]);
+    xyz_r <= rawE_0_isZero & rawE_1_isZero;
+    xyz_r_1 <=
+      rawE_0_isZero | ~(rawE_1_isZero | $signed(rawE_0_sExp) > $signed(rawE_1_sExp))
+        ? rawE_1_sExp
+        : rawE_0_sExp;
+    xyz_r_2 <= rawE_2_isZero;
+    xyz_r_3 <= rawE_2_sExp;
+    topNone <= xyz_r & xyz_r_2;
+    top_r <= xyz_r | ~(xyz_r_2 | $signed(xyz_r_1) > $signed(xyz_r_3)) ? xyz_r_3 : xyz_r_1;
+    r_0 <= cellsAndOver_cell_r_1 ? cellsAndOver_cell_r_2[19:0] : cellsAndOver_plain[19:0];
+    r_1 <=
+      cellsAndOver_cell_r_4 ? cellsAndOver_cell_r_5[19:0] : cellsAndOver_plain_1[19:0];
+    r_2 <=
+      cellsAndOver_cell_r_7 ? cellsAndOver_cell_r_8[19:0] : cellsAndOver_plain_2[19:0];
+    io_out_cellOverflow_r <= cellsAndOver_0_2 | cellsAndOver_1_2 | cellsAndOver_2_2;
+    r_1_0 <= qs_vS_isZero ? 29'h0 : qs_vS_sign ? 29'h0 - qs_low : qs_low;
+    r_1_1 <= qs_vS_1_isZero ? 29'h0 : qs_vS_1_sign ? 29'h0 - qs_low_1 : qs_low_1;
+    r_1_2 <= qs_vS_2_isZero ? 29'h0 : qs_vS_2_sign ? 29'h0 - qs_low_2 : qs_low_2;
+    r_2_0 <= r_1_0;
+    r_2_1 <= r_1_1;
+    r_2_2 <= r_1_2;
+    r_3_0 <= r_2_0;
+    r_3_1 <= r_2_1;
+    r_3_2 <= r_2_2;
+    r_4_0 <= r_3_0;
+    r_4_1 <= r_3_1;
+    r_4_2 <= r_3_2;
+    io_out_qr_r <= rNone ? 29'h0 : (|(qrWide[58:29])) ? 29'h1FFFFFFF : qrWide[28:0];
+    io_out_qr_r_1 <= io_out_qr_r;
+    io_out_qr_r_2 <= io_out_qr_r_1;
+    io_out_qr_r_3 <= io_out_qr_r_2;
+    io_out_need_r <= {needK[11], needK, 1'h0} - {13'h0, oddFits};
+    io_out_need_r_1 <= io_out_need_r;
+    io_out_need_r_2 <= io_out_need_r_1;
+    io_out_needNone_r <= rNone;
+    io_out_needNone_r_1 <= io_out_needNone_r;
+    io_out_needNone_r_2 <= io_out_needNone_r_1;
+    io_out_needNone_r_3 <= io_out_needNone_r_2;
+    io_out_nonFinite_r <= nonFinite;
     io_out_top_r <= {{3{top[10]}}, top};
-    io_out_topNone_r <= _GEN_15 & raw_2_isZero;
+    io_out_top_r_1 <= io_out_top_r;
+    io_out_top_r_2 <= io_out_top_r_1;
+    io_out_top_r_3 <= io_out_top_r_2;
+    io_out_top_r_4 <= io_out_top_r_3;
+    io_out_top_r_5 <= io_out_top_r_4;
+    io_out_topNone_r <= topNone;
+    io_out_topNone_r_1 <= io_out_topNone_r;
+    io_out_topNone_r_2 <= io_out_topNone_r_1;
+    io_out_topNone_r_3 <= io_out_topNone_r_2;
+    io_out_topNone_r_4 <= io_out_topNone_r_3;
+    io_out_topNone_r_5 <= io_out_topNone_r_4;
+    if (reset) begin
+      io_out_valid_r <= 1'h0;
+      io_out_valid_r_1 <= 1'h0;
+      io_out_valid_r_2 <= 1'h0;
+      io_out_valid_r_3 <= 1'h0;
+      io_out_valid_r_4 <= 1'h0;
+      io_out_valid_r_5 <= 1'h0;
+      io_out_valid_r_6 <= 1'h0;
+      io_out_valid_r_7 <= 1'h0;
+      io_out_valid_r_8 <= 1'h0;
+      io_out_valid_r_9 <= 1'h0;
+    end
+    else begin
+      io_out_valid_r <= io_in_valid;
+      io_out_valid_r_1 <= io_out_valid_r;
+      io_out_valid_r_2 <= io_out_valid_r_1;
+      io_out_valid_r_3 <= io_out_valid_r_2;
+      io_out_valid_r_4 <= io_out_valid_r_3;
+      io_out_valid_r_5 <= io_out_valid_r_4;
+      io_out_valid_r_6 <= io_out_valid_r_5;
+      io_out_valid_r_7 <= io_out_valid_r_6;
+      io_out_valid_r_8 <= io_out_valid_r_7;
+      io_out_valid_r_9 <= io_out_valid_r_8;
+    end
   end // always @(posedge)
-  assign io_out_valid = io_out_valid_r;
+  assign io_out_valid = io_out_valid_r_9;
   assign io_out_cell_0 = r_0;
   assign io_out_cell_1 = r_1;
   assign io_out_cell_2 = r_2;
   assign io_out_cellOverflow = io_out_cellOverflow_r;
-  assign io_out_q_0 = r_1_0;
-  assign io_out_q_1 = r_1_1;
-  assign io_out_q_2 = r_1_2;
-  assign io_out_qr = io_out_qr_r;
-  assign io_out_need = io_out_need_r;
-  assign io_out_needNone = io_out_needNone_r;
+  assign io_out_q_0 = r_4_0;
+  assign io_out_q_1 = r_4_1;
+  assign io_out_q_2 = r_4_2;
+  assign io_out_qr = io_out_qr_r_3;
+  assign io_out_need = io_out_need_r_2;
+  assign io_out_needNone = io_out_needNone_r_3;
   assign io_out_nonFinite = io_out_nonFinite_r;
-  assign io_out_top = io_out_top_r;
-  assign io_out_topNone = io_out_topNone_r;
+  assign io_out_top = io_out_top_r_5;
+  assign io_out_topNone = io_out_topNone_r_5;
 endmodule
 
 module BoxTracker_fp32_world(
@@ -87631,7 +89228,7 @@ module deferred_124x11_world(
   assign R0_data = R0_en ? Memory[R0_addr] : 11'bx;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
+module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_y10_t4_bx_world(
   input         clock,
                 reset,
                 io_begin,
@@ -91131,13 +92728,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg  [28:0] larges_15_q_2;
   reg  [28:0] larges_15_qr;
   reg  [3:0]  state;
+  reg  [1:0]  settle;
   wire        io_busy_0 = (|state) & state != 4'h1;
   reg         pending;
   reg  [12:0] pendingNum;
-  wire        classifying = state == 4'h5;
-  wire        _sorts_3_io_prefix_T = state == 4'h6;
-  wire        _sorts_3_io_in_1_bits_scatter_T = state == 4'h7;
-  wire        _gens_15_io_start_T = state == 4'h8;
+  wire        classifying = state == 4'h6;
+  wire        _sorts_3_io_prefix_T = state == 4'h7;
+  wire        _sorts_3_io_in_1_bits_scatter_T = state == 4'h8;
+  wire        _gens_15_io_start_T = state == 4'h9;
   wire        io_canBegin_0 =
     ~(|state)
     | (classifying | _sorts_3_io_prefix_T | _sorts_3_io_in_1_bits_scatter_T
@@ -91194,7 +92792,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [28:0] _gens_13_io_largeFrom_T = _GEN_4 * 29'hD000;
   wire [28:0] _gens_14_io_largeFrom_T = _GEN_4 * 29'hE000;
   wire [28:0] _gens_15_io_largeFrom_T = _GEN_4 * 29'hF000;
-  reg  [5:0]  inflight;
+  reg  [7:0]  inflight;
   reg         laneKeys_0_io_in_valid_REG;
   wire [13:0] _laneKeys_15_io_in_level_T = loading ? 14'h0 : _cellExp_io_level;
   reg         laneKeys_1_io_in_valid_REG;
@@ -91216,24 +92814,96 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        fedIn_1 = io_feed_1_valid & feedOn;
   wire        fedIn_2 = io_feed_2_valid & feedOn;
   wire        fedIn_3 = io_feed_3_valid & feedOn;
-  reg  [3:0]  feedInflight;
+  reg  [5:0]  feedInflight;
   reg  [11:0] REG;
   reg  [11:0] r;
-  reg  [11:0] REG_1;
   reg  [11:0] r_1;
-  reg  [11:0] REG_2;
   reg  [11:0] r_2;
-  reg  [11:0] REG_3;
   reg  [11:0] r_3;
-  reg  [11:0] REG_4;
   reg  [11:0] r_4;
-  reg  [11:0] REG_5;
   reg  [11:0] r_5;
-  reg  [11:0] REG_6;
   reg  [11:0] r_6;
-  reg  [11:0] REG_7;
   reg  [11:0] r_7;
-  wire        _io_quiet_T_3 = feedInflight == 4'h0;
+  reg  [11:0] r_8;
+  reg  [11:0] r_9;
+  reg  [11:0] REG_1;
+  reg  [11:0] r_10;
+  reg  [11:0] r_11;
+  reg  [11:0] r_12;
+  reg  [11:0] r_13;
+  reg  [11:0] r_14;
+  reg  [11:0] r_15;
+  reg  [11:0] r_16;
+  reg  [11:0] r_17;
+  reg  [11:0] r_18;
+  reg  [11:0] r_19;
+  reg  [11:0] REG_2;
+  reg  [11:0] r_20;
+  reg  [11:0] r_21;
+  reg  [11:0] r_22;
+  reg  [11:0] r_23;
+  reg  [11:0] r_24;
+  reg  [11:0] r_25;
+  reg  [11:0] r_26;
+  reg  [11:0] r_27;
+  reg  [11:0] r_28;
+  reg  [11:0] r_29;
+  reg  [11:0] REG_3;
+  reg  [11:0] r_30;
+  reg  [11:0] r_31;
+  reg  [11:0] r_32;
+  reg  [11:0] r_33;
+  reg  [11:0] r_34;
+  reg  [11:0] r_35;
+  reg  [11:0] r_36;
+  reg  [11:0] r_37;
+  reg  [11:0] r_38;
+  reg  [11:0] r_39;
+  reg  [11:0] REG_4;
+  reg  [11:0] r_40;
+  reg  [11:0] r_41;
+  reg  [11:0] r_42;
+  reg  [11:0] r_43;
+  reg  [11:0] r_44;
+  reg  [11:0] r_45;
+  reg  [11:0] r_46;
+  reg  [11:0] r_47;
+  reg  [11:0] r_48;
+  reg  [11:0] r_49;
+  reg  [11:0] REG_5;
+  reg  [11:0] r_50;
+  reg  [11:0] r_51;
+  reg  [11:0] r_52;
+  reg  [11:0] r_53;
+  reg  [11:0] r_54;
+  reg  [11:0] r_55;
+  reg  [11:0] r_56;
+  reg  [11:0] r_57;
+  reg  [11:0] r_58;
+  reg  [11:0] r_59;
+  reg  [11:0] REG_6;
+  reg  [11:0] r_60;
+  reg  [11:0] r_61;
+  reg  [11:0] r_62;
+  reg  [11:0] r_63;
+  reg  [11:0] r_64;
+  reg  [11:0] r_65;
+  reg  [11:0] r_66;
+  reg  [11:0] r_67;
+  reg  [11:0] r_68;
+  reg  [11:0] r_69;
+  reg  [11:0] REG_7;
+  reg  [11:0] r_70;
+  reg  [11:0] r_71;
+  reg  [11:0] r_72;
+  reg  [11:0] r_73;
+  reg  [11:0] r_74;
+  reg  [11:0] r_75;
+  reg  [11:0] r_76;
+  reg  [11:0] r_77;
+  reg  [11:0] r_78;
+  reg  [11:0] r_79;
+  wire        _io_quiet_T_3 = feedInflight == 6'h0;
   wire        _sorts_0_io_in_0_valid_T_8 =
     $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_0_io_in_1_valid_T_8 =
@@ -91255,9 +92925,183 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg  [19:0] boxMap_origin_2;
   reg  [12:0] boxMap_rx;
   reg  [12:0] boxMap_rxy;
-  reg  [1:0]  boxCycle;
+  reg  [4:0]  boxCycle;
   wire [28:0] _sorts_3_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
   reg  [13:0] walkBuckets;
+  reg  [31:0] merged_key;
+  reg         merged_REG;
+  reg  [31:0] merged_key_1;
+  reg         merged_REG_1;
+  reg  [31:0] merged_key_2;
+  reg         merged_REG_2;
+  reg  [31:0] merged_key_3;
+  reg         merged_REG_3;
+  reg  [31:0] merged_key_4;
+  reg         merged_REG_4;
+  reg  [31:0] merged_key_5;
+  reg         merged_REG_5;
+  reg  [31:0] merged_key_6;
+  reg         merged_REG_6;
+  reg  [31:0] merged_key_7;
+  reg         merged_REG_7;
+  reg  [31:0] merged_key_8;
+  reg         merged_REG_8;
+  reg  [31:0] merged_key_9;
+  reg         merged_REG_9;
+  reg  [31:0] merged_key_10;
+  reg         merged_REG_10;
+  reg  [31:0] merged_key_11;
+  reg         merged_REG_11;
+  reg  [31:0] merged_key_12;
+  reg         merged_REG_12;
+  reg  [31:0] merged_key_13;
+  reg         merged_REG_13;
+  reg  [31:0] merged_key_14;
+  reg  [31:0] merged_key_15;
+  reg         merged_REG_15;
+  reg  [31:0] merged_key_16;
+  reg         merged_REG_16;
+  reg  [31:0] merged_key_17;
+  reg         merged_REG_17;
+  reg  [31:0] merged_key_18;
+  reg         merged_REG_18;
+  reg  [31:0] merged_key_19;
+  reg         merged_REG_19;
+  reg  [31:0] merged_key_20;
+  reg         merged_REG_20;
+  reg  [31:0] merged_key_21;
+  reg         merged_REG_21;
+  reg  [31:0] merged_key_22;
+  reg         merged_REG_22;
+  reg  [31:0] merged_key_23;
+  reg         merged_REG_23;
+  reg  [31:0] merged_key_24;
+  reg         merged_REG_24;
+  reg  [31:0] merged_key_25;
+  reg         merged_REG_25;
+  reg  [31:0] merged_key_26;
+  reg         merged_REG_26;
+  reg  [31:0] merged_key_27;
+  reg         merged_REG_27;
+  reg  [31:0] merged_key_28;
+  reg         merged_REG_28;
+  reg  [31:0] merged_key_29;
+  reg  [31:0] merged_key_30;
+  reg         merged_REG_30;
+  reg  [31:0] merged_key_31;
+  reg         merged_REG_31;
+  reg  [31:0] merged_key_32;
+  reg         merged_REG_32;
+  reg  [31:0] merged_key_33;
+  reg         merged_REG_33;
+  reg  [31:0] merged_key_34;
+  reg         merged_REG_34;
+  reg  [31:0] merged_key_35;
+  reg         merged_REG_35;
+  reg  [31:0] merged_key_36;
+  reg         merged_REG_36;
+  reg  [31:0] merged_key_37;
+  reg         merged_REG_37;
+  reg  [31:0] merged_key_38;
+  reg         merged_REG_38;
+  reg  [31:0] merged_key_39;
+  reg         merged_REG_39;
+  reg  [31:0] merged_key_40;
+  reg         merged_REG_40;
+  reg  [31:0] merged_key_41;
+  reg         merged_REG_41;
+  reg  [31:0] merged_key_42;
+  reg         merged_REG_42;
+  reg  [31:0] merged_key_43;
+  reg         merged_REG_43;
+  reg  [31:0] merged_key_44;
+  reg  [31:0] merged_key_45;
+  reg         merged_REG_45;
+  reg  [31:0] merged_key_46;
+  reg         merged_REG_46;
+  reg  [31:0] merged_key_47;
+  reg         merged_REG_47;
+  reg  [31:0] merged_key_48;
+  reg         merged_REG_48;
+  reg  [31:0] merged_key_49;
+  reg         merged_REG_49;
+  reg  [31:0] merged_key_50;
+  reg         merged_REG_50;
+  reg  [31:0] merged_key_51;
+  reg         merged_REG_51;
+  reg  [31:0] merged_key_52;
+  reg         merged_REG_52;
+  reg  [31:0] merged_key_53;
+  reg         merged_REG_53;
+  reg  [31:0] merged_key_54;
+  reg         merged_REG_54;
+  reg  [31:0] merged_key_55;
+  reg         merged_REG_55;
+  reg  [31:0] merged_key_56;
+  reg         merged_REG_56;
+  reg  [31:0] merged_key_57;
+  reg         merged_REG_57;
+  reg  [31:0] merged_key_58;
+  reg         merged_REG_58;
+  reg  [31:0] merged_key_59;
+  reg  [31:0] merged_key_60;
+  reg         merged_REG_60;
+  reg  [31:0] merged_key_61;
+  reg         merged_REG_61;
+  reg  [31:0] merged_key_62;
+  reg         merged_REG_62;
+  reg  [31:0] merged_key_63;
+  reg         merged_REG_63;
+  reg  [31:0] merged_key_64;
+  reg         merged_REG_64;
+  reg  [31:0] merged_key_65;
+  reg         merged_REG_65;
+  reg  [31:0] merged_key_66;
+  reg         merged_REG_66;
+  reg  [31:0] merged_key_67;
+  reg         merged_REG_67;
+  reg  [31:0] merged_key_68;
+  reg         merged_REG_68;
+  reg  [31:0] merged_key_69;
+  reg         merged_REG_69;
+  reg  [31:0] merged_key_70;
+  reg         merged_REG_70;
+  reg  [31:0] merged_key_71;
+  reg         merged_REG_71;
+  reg  [31:0] merged_key_72;
+  reg         merged_REG_72;
+  reg  [31:0] merged_key_73;
+  reg         merged_REG_73;
+  reg  [31:0] merged_key_74;
+  reg  [31:0] merged_key_75;
+  reg         merged_REG_75;
+  reg  [31:0] merged_key_76;
+  reg         merged_REG_76;
+  reg  [31:0] merged_key_77;
+  reg         merged_REG_77;
+  reg  [31:0] merged_key_78;
+  reg         merged_REG_78;
+  reg  [31:0] merged_key_79;
+  reg         merged_REG_79;
+  reg  [31:0] merged_key_80;
+  reg         merged_REG_80;
+  reg  [31:0] merged_key_81;
+  reg         merged_REG_81;
+  reg  [31:0] merged_key_82;
+  reg         merged_REG_82;
+  reg  [31:0] merged_key_83;
+  reg         merged_REG_83;
+  reg  [31:0] merged_key_84;
+  reg         merged_REG_84;
+  reg  [31:0] merged_key_85;
+  reg         merged_REG_85;
+  reg  [31:0] merged_key_86;
+  reg         merged_REG_86;
+  reg  [31:0] merged_key_87;
+  reg         merged_REG_87;
+  reg  [31:0] merged_key_88;
+  reg         merged_REG_88;
+  reg  [31:0] merged_key_89;
   reg         anyBox;
   reg  [31:0] lo_0;
   reg  [31:0] lo_1;
@@ -91269,7 +93113,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg  [14:0] sat_2;
   reg  [46:0] places;
   reg  [31:0] placesXY;
-  wire        _GEN_5 = state == 4'h4;
+  wire        _GEN_5 = state == 4'h5;
   reg  [8:0]  m;
   wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
@@ -100299,55 +102143,55 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:412 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:464 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:473 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -100372,34 +102216,35 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        _GEN_8 = state == 4'h2;
   wire        _GEN_9 = state == 4'h3;
   wire        _GEN_10 = ~(|state) | _GEN_7;
-  wire        _GEN_11 = state == 4'h5;
+  wire        _GEN_11 = state == 4'h4;
   wire        _GEN_12 = state == 4'h6;
   wire        _GEN_13 = state == 4'h7;
-  reg         REG_8;
   wire        _GEN_14 = state == 4'h8;
-  wire        _GEN_15 =
+  reg         REG_8;
+  wire        _GEN_15 = state == 4'h9;
+  wire        _GEN_16 =
     sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  wire        _GEN_16 = _GEN_14 & _GEN_15;
+  wire        _GEN_17 = _GEN_15 & _GEN_16;
   assign handOver =
-    ~(_GEN_10 | _GEN_8 | _GEN_9 | _GEN_5 | _GEN_11 | _GEN_12 | _GEN_13) & _GEN_16
-    & pending;
-  wire [27:0] _GEN_17 = {15'h0, pendingNum};
-  wire [28:0] _GEN_18 = {16'h0, pendingNum};
+    ~(_GEN_10 | _GEN_8 | _GEN_9 | _GEN_11 | _GEN_5 | _GEN_12 | _GEN_13 | _GEN_14)
+    & _GEN_17 & pending;
+  wire [27:0] _GEN_18 = {15'h0, pendingNum};
+  wire [28:0] _GEN_19 = {16'h0, pendingNum};
   wire [26:0] _cuts_T_80 = {14'h0, pendingNum} * 27'h3000;
-  wire [27:0] _cuts_T_86 = _GEN_17 * 28'h5000;
-  wire [27:0] _cuts_T_89 = _GEN_17 * 28'h6000;
-  wire [27:0] _cuts_T_92 = _GEN_17 * 28'h7000;
-  wire [28:0] _cuts_T_97 = _GEN_18 * 29'h9000;
-  wire [28:0] _cuts_T_99 = _GEN_18 * 29'hA000;
-  wire [28:0] _cuts_T_101 = _GEN_18 * 29'hB000;
-  wire [28:0] _cuts_T_103 = _GEN_18 * 29'hC000;
-  wire [28:0] _cuts_T_105 = _GEN_18 * 29'hD000;
-  wire [28:0] _cuts_T_107 = _GEN_18 * 29'hE000;
-  wire [28:0] _cuts_T_109 = _GEN_18 * 29'hF000;
+  wire [27:0] _cuts_T_86 = _GEN_18 * 28'h5000;
+  wire [27:0] _cuts_T_89 = _GEN_18 * 28'h6000;
+  wire [27:0] _cuts_T_92 = _GEN_18 * 28'h7000;
+  wire [28:0] _cuts_T_97 = _GEN_19 * 29'h9000;
+  wire [28:0] _cuts_T_99 = _GEN_19 * 29'hA000;
+  wire [28:0] _cuts_T_101 = _GEN_19 * 29'hB000;
+  wire [28:0] _cuts_T_103 = _GEN_19 * 29'hC000;
+  wire [28:0] _cuts_T_105 = _GEN_19 * 29'hD000;
+  wire [28:0] _cuts_T_107 = _GEN_19 * 29'hE000;
+  wire [28:0] _cuts_T_109 = _GEN_19 * 29'hF000;
   wire        _walkBuckets_ceilLog2_T_50 = pendingNum < 13'h2;
   wire [12:0] _walkBuckets_ceilLog2_T_51 = pendingNum - 13'h1;
   wire        _walkBuckets_t_T_4 = pendingNum == 13'h0;
@@ -100586,34 +102431,34 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       : 6'h0;
   wire [76:0] _walkBuckets_T_7 =
     77'h1 << (walkBuckets_t_1 > 6'hD ? 6'hD : walkBuckets_t_1);
-  wire [12:0] _GEN_19 = {4'h0, io_num[12:4]};
-  wire [26:0] _GEN_20 = {14'h0, io_num};
-  wire [12:0] _GEN_21 = {3'h0, io_num[12:3]};
-  wire [27:0] _GEN_22 = {15'h0, io_num};
-  wire [12:0] _GEN_23 = {2'h0, io_num[12:2]};
-  wire [28:0] _GEN_24 = {16'h0, io_num};
-  wire [26:0] _cuts_T_6 = _GEN_20 * 27'h3000;
-  wire [27:0] _cuts_T_12 = _GEN_22 * 28'h5000;
-  wire [27:0] _cuts_T_15 = _GEN_22 * 28'h6000;
-  wire [27:0] _cuts_T_18 = _GEN_22 * 28'h7000;
-  wire [28:0] _cuts_T_23 = _GEN_24 * 29'h9000;
-  wire [28:0] _cuts_T_25 = _GEN_24 * 29'hA000;
-  wire [28:0] _cuts_T_27 = _GEN_24 * 29'hB000;
-  wire [28:0] _cuts_T_29 = _GEN_24 * 29'hC000;
-  wire [28:0] _cuts_T_31 = _GEN_24 * 29'hD000;
-  wire [28:0] _cuts_T_33 = _GEN_24 * 29'hE000;
-  wire [28:0] _cuts_T_35 = _GEN_24 * 29'hF000;
-  wire [26:0] _cuts_T_43 = _GEN_20 * 27'h3000;
-  wire [27:0] _cuts_T_49 = _GEN_22 * 28'h5000;
-  wire [27:0] _cuts_T_52 = _GEN_22 * 28'h6000;
-  wire [27:0] _cuts_T_55 = _GEN_22 * 28'h7000;
-  wire [28:0] _cuts_T_60 = _GEN_24 * 29'h9000;
-  wire [28:0] _cuts_T_62 = _GEN_24 * 29'hA000;
-  wire [28:0] _cuts_T_64 = _GEN_24 * 29'hB000;
-  wire [28:0] _cuts_T_66 = _GEN_24 * 29'hC000;
-  wire [28:0] _cuts_T_68 = _GEN_24 * 29'hD000;
-  wire [28:0] _cuts_T_70 = _GEN_24 * 29'hE000;
-  wire [28:0] _cuts_T_72 = _GEN_24 * 29'hF000;
+  wire [12:0] _GEN_20 = {4'h0, io_num[12:4]};
+  wire [26:0] _GEN_21 = {14'h0, io_num};
+  wire [12:0] _GEN_22 = {3'h0, io_num[12:3]};
+  wire [27:0] _GEN_23 = {15'h0, io_num};
+  wire [12:0] _GEN_24 = {2'h0, io_num[12:2]};
+  wire [28:0] _GEN_25 = {16'h0, io_num};
+  wire [26:0] _cuts_T_6 = _GEN_21 * 27'h3000;
+  wire [27:0] _cuts_T_12 = _GEN_23 * 28'h5000;
+  wire [27:0] _cuts_T_15 = _GEN_23 * 28'h6000;
+  wire [27:0] _cuts_T_18 = _GEN_23 * 28'h7000;
+  wire [28:0] _cuts_T_23 = _GEN_25 * 29'h9000;
+  wire [28:0] _cuts_T_25 = _GEN_25 * 29'hA000;
+  wire [28:0] _cuts_T_27 = _GEN_25 * 29'hB000;
+  wire [28:0] _cuts_T_29 = _GEN_25 * 29'hC000;
+  wire [28:0] _cuts_T_31 = _GEN_25 * 29'hD000;
+  wire [28:0] _cuts_T_33 = _GEN_25 * 29'hE000;
+  wire [28:0] _cuts_T_35 = _GEN_25 * 29'hF000;
+  wire [26:0] _cuts_T_43 = _GEN_21 * 27'h3000;
+  wire [27:0] _cuts_T_49 = _GEN_23 * 28'h5000;
+  wire [27:0] _cuts_T_52 = _GEN_23 * 28'h6000;
+  wire [27:0] _cuts_T_55 = _GEN_23 * 28'h7000;
+  wire [28:0] _cuts_T_60 = _GEN_25 * 29'h9000;
+  wire [28:0] _cuts_T_62 = _GEN_25 * 29'hA000;
+  wire [28:0] _cuts_T_64 = _GEN_25 * 29'hB000;
+  wire [28:0] _cuts_T_66 = _GEN_25 * 29'hC000;
+  wire [28:0] _cuts_T_68 = _GEN_25 * 29'hD000;
+  wire [28:0] _cuts_T_70 = _GEN_25 * 29'hE000;
+  wire [28:0] _cuts_T_72 = _GEN_25 * 29'hF000;
   wire [19:0] _extent_T =
     {_corners_k_1_io_out_cell_0[19], _corners_k_1_io_out_cell_0[19:1]}
     - {_corners_k_io_out_cell_0[19], _corners_k_io_out_cell_0[19:1]};
@@ -100625,10 +102470,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [18:0] _boxMap_origin_0_T = _corners_k_io_out_cell_0[19:1] - 19'h1;
   wire [18:0] _boxMap_origin_2_T = _corners_k_io_out_cell_2[19:1] - 19'h1;
   wire [14:0] _satNow_T_1 = (|(extent_0[20:14])) ? 15'h4000 : extent_0[14:0];
-  wire        _GEN_25 = _GEN_7 & io_start;
+  wire        _GEN_26 = _GEN_7 & io_start;
   wire        z_tooMany = io_num > 13'h1000;
   wire        filling = state == 4'h1;
-  wire        _GEN_26 =
+  wire        _GEN_27 =
     classifying
     & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
        & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -100655,8 +102500,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
        & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
            & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
     | st_cellOverflow;
-  wire        _GEN_27 = ~(io_start & (~(|state) | filling)) & feedOn;
-  wire        _GEN_28 = ~(|state) | _GEN_7;
+  wire        _GEN_28 = ~(io_start & (~(|state) | filling)) & feedOn;
+  wire        _GEN_29 = ~(|state) | _GEN_7;
   wire        inPass = loading | classifying | _sorts_3_io_in_1_bits_scatter_T;
   wire        reading_0 = inPass & i_0 < (loading ? _GEN_0 : _GEN_1);
   wire        reading_1 = inPass & i_1 < (loading ? _GEN_1 : _GEN_2);
@@ -100664,15 +102509,15 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        reading_2 =
     inPass
     & i_2 < (loading ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_10[14:3]});
-  wire [15:0] _GEN_29 = {3'h0, num};
+  wire [15:0] _GEN_30 = {3'h0, num};
   wire        reading_3 = inPass & i_3 < (loading ? _GEN_2 : {1'h0, num[12:1]});
-  wire [15:0] _i_5_T_9 = _GEN_29 * 16'h5;
+  wire [15:0] _i_5_T_9 = _GEN_30 * 16'h5;
   wire        reading_4 =
     inPass & i_4 < (loading ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_9[15:3]);
-  wire [15:0] _i_6_T_9 = _GEN_29 * 16'h6;
+  wire [15:0] _i_6_T_9 = _GEN_30 * 16'h6;
   wire        reading_5 =
     inPass & i_5 < (loading ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_9[15:3]);
-  wire [15:0] _i_7_T_9 = _GEN_29 * 16'h7;
+  wire [15:0] _i_7_T_9 = _GEN_30 * 16'h7;
   wire        reading_6 =
     inPass & i_6 < (loading ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_9[15:3]);
   wire        reading_7 = inPass & i_7 < (loading ? {1'h0, num[12:1]} : num);
@@ -100707,403 +102552,26 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
      reading_3,
      reading_2,
      reading_1,
-     reading_0} == 16'h0 & inflight == 6'h0;
-  wire        _merged_T_450 = _trackers_0_io_any | _trackers_1_io_any;
-  wire [31:0] _merged_T_5 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_0 < _trackers_0_io_lo_0
-      ? _trackers_1_io_lo_0
-      : _trackers_0_io_lo_0;
-  wire        _merged_T_456 = _trackers_2_io_any | _trackers_3_io_any;
-  wire [31:0] _merged_T_11 =
-    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_0 < _trackers_2_io_lo_0
-      ? _trackers_3_io_lo_0
-      : _trackers_2_io_lo_0;
-  wire        _merged_T_12 = _merged_T_450 | _merged_T_456;
-  wire [31:0] _merged_T_17 =
-    ~_merged_T_450 | _merged_T_456 & _merged_T_11 < _merged_T_5
-      ? _merged_T_11
-      : _merged_T_5;
-  wire        _merged_T_468 = _trackers_4_io_any | _trackers_5_io_any;
-  wire [31:0] _merged_T_23 =
-    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_0 < _trackers_4_io_lo_0
-      ? _trackers_5_io_lo_0
-      : _trackers_4_io_lo_0;
-  wire        _merged_T_474 = _trackers_6_io_any | _trackers_7_io_any;
-  wire [31:0] _merged_T_29 =
-    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_0 < _trackers_6_io_lo_0
-      ? _trackers_7_io_lo_0
-      : _trackers_6_io_lo_0;
-  wire        _merged_T_30 = _merged_T_468 | _merged_T_474;
-  wire [31:0] _merged_T_35 =
-    ~_merged_T_468 | _merged_T_474 & _merged_T_29 < _merged_T_23
-      ? _merged_T_29
-      : _merged_T_23;
-  wire [31:0] _merged_T_41 =
-    ~_merged_T_12 | _merged_T_30 & _merged_T_35 < _merged_T_17
-      ? _merged_T_35
-      : _merged_T_17;
-  wire        _merged_T_492 = _trackers_8_io_any | _trackers_9_io_any;
-  wire [31:0] _merged_T_47 =
-    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_0 < _trackers_8_io_lo_0
-      ? _trackers_9_io_lo_0
-      : _trackers_8_io_lo_0;
-  wire        _merged_T_498 = _trackers_10_io_any | _trackers_11_io_any;
-  wire [31:0] _merged_T_53 =
-    ~_trackers_10_io_any | _trackers_11_io_any
-    & _trackers_11_io_lo_0 < _trackers_10_io_lo_0
-      ? _trackers_11_io_lo_0
-      : _trackers_10_io_lo_0;
-  wire        _merged_T_54 = _merged_T_492 | _merged_T_498;
-  wire [31:0] _merged_T_59 =
-    ~_merged_T_492 | _merged_T_498 & _merged_T_53 < _merged_T_47
-      ? _merged_T_53
-      : _merged_T_47;
-  wire        _merged_T_510 = _trackers_12_io_any | _trackers_13_io_any;
-  wire [31:0] _merged_T_65 =
-    ~_trackers_12_io_any | _trackers_13_io_any
-    & _trackers_13_io_lo_0 < _trackers_12_io_lo_0
-      ? _trackers_13_io_lo_0
-      : _trackers_12_io_lo_0;
-  wire        _merged_T_516 = _trackers_14_io_any | _trackers_15_io_any;
-  wire [31:0] _merged_T_71 =
-    ~_trackers_14_io_any | _trackers_15_io_any
-    & _trackers_15_io_lo_0 < _trackers_14_io_lo_0
-      ? _trackers_15_io_lo_0
-      : _trackers_14_io_lo_0;
-  wire        _merged_T_72 = _merged_T_510 | _merged_T_516;
-  wire [31:0] _merged_T_77 =
-    ~_merged_T_510 | _merged_T_516 & _merged_T_71 < _merged_T_65
-      ? _merged_T_71
-      : _merged_T_65;
-  wire [31:0] _merged_T_83 =
-    ~_merged_T_54 | _merged_T_72 & _merged_T_77 < _merged_T_59
-      ? _merged_T_77
-      : _merged_T_59;
-  wire [31:0] _merged_T_95 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_1 < _trackers_0_io_lo_1
-      ? _trackers_1_io_lo_1
-      : _trackers_0_io_lo_1;
-  wire [31:0] _merged_T_101 =
-    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_1 < _trackers_2_io_lo_1
-      ? _trackers_3_io_lo_1
-      : _trackers_2_io_lo_1;
-  wire        _merged_T_102 = _merged_T_450 | _merged_T_456;
-  wire [31:0] _merged_T_107 =
-    ~_merged_T_450 | _merged_T_456 & _merged_T_101 < _merged_T_95
-      ? _merged_T_101
-      : _merged_T_95;
-  wire [31:0] _merged_T_113 =
-    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_1 < _trackers_4_io_lo_1
-      ? _trackers_5_io_lo_1
-      : _trackers_4_io_lo_1;
-  wire [31:0] _merged_T_119 =
-    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_1 < _trackers_6_io_lo_1
-      ? _trackers_7_io_lo_1
-      : _trackers_6_io_lo_1;
-  wire        _merged_T_120 = _merged_T_468 | _merged_T_474;
-  wire [31:0] _merged_T_125 =
-    ~_merged_T_468 | _merged_T_474 & _merged_T_119 < _merged_T_113
-      ? _merged_T_119
-      : _merged_T_113;
-  wire [31:0] _merged_T_131 =
-    ~_merged_T_102 | _merged_T_120 & _merged_T_125 < _merged_T_107
-      ? _merged_T_125
-      : _merged_T_107;
-  wire [31:0] _merged_T_137 =
-    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_1 < _trackers_8_io_lo_1
-      ? _trackers_9_io_lo_1
-      : _trackers_8_io_lo_1;
-  wire [31:0] _merged_T_143 =
-    ~_trackers_10_io_any | _trackers_11_io_any
-    & _trackers_11_io_lo_1 < _trackers_10_io_lo_1
-      ? _trackers_11_io_lo_1
-      : _trackers_10_io_lo_1;
-  wire        _merged_T_144 = _merged_T_492 | _merged_T_498;
-  wire [31:0] _merged_T_149 =
-    ~_merged_T_492 | _merged_T_498 & _merged_T_143 < _merged_T_137
-      ? _merged_T_143
-      : _merged_T_137;
-  wire [31:0] _merged_T_155 =
-    ~_trackers_12_io_any | _trackers_13_io_any
-    & _trackers_13_io_lo_1 < _trackers_12_io_lo_1
-      ? _trackers_13_io_lo_1
-      : _trackers_12_io_lo_1;
-  wire [31:0] _merged_T_161 =
-    ~_trackers_14_io_any | _trackers_15_io_any
-    & _trackers_15_io_lo_1 < _trackers_14_io_lo_1
-      ? _trackers_15_io_lo_1
-      : _trackers_14_io_lo_1;
-  wire        _merged_T_162 = _merged_T_510 | _merged_T_516;
-  wire [31:0] _merged_T_167 =
-    ~_merged_T_510 | _merged_T_516 & _merged_T_161 < _merged_T_155
-      ? _merged_T_161
-      : _merged_T_155;
-  wire [31:0] _merged_T_173 =
-    ~_merged_T_144 | _merged_T_162 & _merged_T_167 < _merged_T_149
-      ? _merged_T_167
-      : _merged_T_149;
-  wire [31:0] _merged_T_185 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_2 < _trackers_0_io_lo_2
-      ? _trackers_1_io_lo_2
-      : _trackers_0_io_lo_2;
-  wire [31:0] _merged_T_191 =
-    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_2 < _trackers_2_io_lo_2
-      ? _trackers_3_io_lo_2
-      : _trackers_2_io_lo_2;
-  wire        _merged_T_192 = _merged_T_450 | _merged_T_456;
-  wire [31:0] _merged_T_197 =
-    ~_merged_T_450 | _merged_T_456 & _merged_T_191 < _merged_T_185
-      ? _merged_T_191
-      : _merged_T_185;
-  wire [31:0] _merged_T_203 =
-    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_2 < _trackers_4_io_lo_2
-      ? _trackers_5_io_lo_2
-      : _trackers_4_io_lo_2;
-  wire [31:0] _merged_T_209 =
-    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_2 < _trackers_6_io_lo_2
-      ? _trackers_7_io_lo_2
-      : _trackers_6_io_lo_2;
-  wire        _merged_T_210 = _merged_T_468 | _merged_T_474;
-  wire [31:0] _merged_T_215 =
-    ~_merged_T_468 | _merged_T_474 & _merged_T_209 < _merged_T_203
-      ? _merged_T_209
-      : _merged_T_203;
-  wire [31:0] _merged_T_221 =
-    ~_merged_T_192 | _merged_T_210 & _merged_T_215 < _merged_T_197
-      ? _merged_T_215
-      : _merged_T_197;
-  wire [31:0] _merged_T_227 =
-    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_2 < _trackers_8_io_lo_2
-      ? _trackers_9_io_lo_2
-      : _trackers_8_io_lo_2;
-  wire [31:0] _merged_T_233 =
-    ~_trackers_10_io_any | _trackers_11_io_any
-    & _trackers_11_io_lo_2 < _trackers_10_io_lo_2
-      ? _trackers_11_io_lo_2
-      : _trackers_10_io_lo_2;
-  wire        _merged_T_234 = _merged_T_492 | _merged_T_498;
-  wire [31:0] _merged_T_239 =
-    ~_merged_T_492 | _merged_T_498 & _merged_T_233 < _merged_T_227
-      ? _merged_T_233
-      : _merged_T_227;
-  wire [31:0] _merged_T_245 =
-    ~_trackers_12_io_any | _trackers_13_io_any
-    & _trackers_13_io_lo_2 < _trackers_12_io_lo_2
-      ? _trackers_13_io_lo_2
-      : _trackers_12_io_lo_2;
-  wire [31:0] _merged_T_251 =
-    ~_trackers_14_io_any | _trackers_15_io_any
-    & _trackers_15_io_lo_2 < _trackers_14_io_lo_2
-      ? _trackers_15_io_lo_2
-      : _trackers_14_io_lo_2;
-  wire        _merged_T_252 = _merged_T_510 | _merged_T_516;
-  wire [31:0] _merged_T_257 =
-    ~_merged_T_510 | _merged_T_516 & _merged_T_251 < _merged_T_245
-      ? _merged_T_251
-      : _merged_T_245;
-  wire [31:0] _merged_T_263 =
-    ~_merged_T_234 | _merged_T_252 & _merged_T_257 < _merged_T_239
-      ? _merged_T_257
-      : _merged_T_239;
-  wire [31:0] _merged_T_275 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_0 > _trackers_0_io_hi_0
-      ? _trackers_1_io_hi_0
-      : _trackers_0_io_hi_0;
-  wire [31:0] _merged_T_281 =
-    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_0 > _trackers_2_io_hi_0
-      ? _trackers_3_io_hi_0
-      : _trackers_2_io_hi_0;
-  wire        _merged_T_282 = _merged_T_450 | _merged_T_456;
-  wire [31:0] _merged_T_287 =
-    ~_merged_T_450 | _merged_T_456 & _merged_T_281 > _merged_T_275
-      ? _merged_T_281
-      : _merged_T_275;
-  wire [31:0] _merged_T_293 =
-    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_0 > _trackers_4_io_hi_0
-      ? _trackers_5_io_hi_0
-      : _trackers_4_io_hi_0;
-  wire [31:0] _merged_T_299 =
-    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_0 > _trackers_6_io_hi_0
-      ? _trackers_7_io_hi_0
-      : _trackers_6_io_hi_0;
-  wire        _merged_T_300 = _merged_T_468 | _merged_T_474;
-  wire [31:0] _merged_T_305 =
-    ~_merged_T_468 | _merged_T_474 & _merged_T_299 > _merged_T_293
-      ? _merged_T_299
-      : _merged_T_293;
-  wire [31:0] _merged_T_311 =
-    ~_merged_T_282 | _merged_T_300 & _merged_T_305 > _merged_T_287
-      ? _merged_T_305
-      : _merged_T_287;
-  wire [31:0] _merged_T_317 =
-    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_0 > _trackers_8_io_hi_0
-      ? _trackers_9_io_hi_0
-      : _trackers_8_io_hi_0;
-  wire [31:0] _merged_T_323 =
-    ~_trackers_10_io_any | _trackers_11_io_any
-    & _trackers_11_io_hi_0 > _trackers_10_io_hi_0
-      ? _trackers_11_io_hi_0
-      : _trackers_10_io_hi_0;
-  wire        _merged_T_324 = _merged_T_492 | _merged_T_498;
-  wire [31:0] _merged_T_329 =
-    ~_merged_T_492 | _merged_T_498 & _merged_T_323 > _merged_T_317
-      ? _merged_T_323
-      : _merged_T_317;
-  wire [31:0] _merged_T_335 =
-    ~_trackers_12_io_any | _trackers_13_io_any
-    & _trackers_13_io_hi_0 > _trackers_12_io_hi_0
-      ? _trackers_13_io_hi_0
-      : _trackers_12_io_hi_0;
-  wire [31:0] _merged_T_341 =
-    ~_trackers_14_io_any | _trackers_15_io_any
-    & _trackers_15_io_hi_0 > _trackers_14_io_hi_0
-      ? _trackers_15_io_hi_0
-      : _trackers_14_io_hi_0;
-  wire        _merged_T_342 = _merged_T_510 | _merged_T_516;
-  wire [31:0] _merged_T_347 =
-    ~_merged_T_510 | _merged_T_516 & _merged_T_341 > _merged_T_335
-      ? _merged_T_341
-      : _merged_T_335;
-  wire [31:0] _merged_T_353 =
-    ~_merged_T_324 | _merged_T_342 & _merged_T_347 > _merged_T_329
-      ? _merged_T_347
-      : _merged_T_329;
-  wire [31:0] _merged_T_365 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_1 > _trackers_0_io_hi_1
-      ? _trackers_1_io_hi_1
-      : _trackers_0_io_hi_1;
-  wire [31:0] _merged_T_371 =
-    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_1 > _trackers_2_io_hi_1
-      ? _trackers_3_io_hi_1
-      : _trackers_2_io_hi_1;
-  wire        _merged_T_372 = _merged_T_450 | _merged_T_456;
-  wire [31:0] _merged_T_377 =
-    ~_merged_T_450 | _merged_T_456 & _merged_T_371 > _merged_T_365
-      ? _merged_T_371
-      : _merged_T_365;
-  wire [31:0] _merged_T_383 =
-    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_1 > _trackers_4_io_hi_1
-      ? _trackers_5_io_hi_1
-      : _trackers_4_io_hi_1;
-  wire [31:0] _merged_T_389 =
-    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_1 > _trackers_6_io_hi_1
-      ? _trackers_7_io_hi_1
-      : _trackers_6_io_hi_1;
-  wire        _merged_T_390 = _merged_T_468 | _merged_T_474;
-  wire [31:0] _merged_T_395 =
-    ~_merged_T_468 | _merged_T_474 & _merged_T_389 > _merged_T_383
-      ? _merged_T_389
-      : _merged_T_383;
-  wire [31:0] _merged_T_401 =
-    ~_merged_T_372 | _merged_T_390 & _merged_T_395 > _merged_T_377
-      ? _merged_T_395
-      : _merged_T_377;
-  wire [31:0] _merged_T_407 =
-    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_1 > _trackers_8_io_hi_1
-      ? _trackers_9_io_hi_1
-      : _trackers_8_io_hi_1;
-  wire [31:0] _merged_T_413 =
-    ~_trackers_10_io_any | _trackers_11_io_any
-    & _trackers_11_io_hi_1 > _trackers_10_io_hi_1
-      ? _trackers_11_io_hi_1
-      : _trackers_10_io_hi_1;
-  wire        _merged_T_414 = _merged_T_492 | _merged_T_498;
-  wire [31:0] _merged_T_419 =
-    ~_merged_T_492 | _merged_T_498 & _merged_T_413 > _merged_T_407
-      ? _merged_T_413
-      : _merged_T_407;
-  wire [31:0] _merged_T_425 =
-    ~_trackers_12_io_any | _trackers_13_io_any
-    & _trackers_13_io_hi_1 > _trackers_12_io_hi_1
-      ? _trackers_13_io_hi_1
-      : _trackers_12_io_hi_1;
-  wire [31:0] _merged_T_431 =
-    ~_trackers_14_io_any | _trackers_15_io_any
-    & _trackers_15_io_hi_1 > _trackers_14_io_hi_1
-      ? _trackers_15_io_hi_1
-      : _trackers_14_io_hi_1;
-  wire        _merged_T_432 = _merged_T_510 | _merged_T_516;
-  wire [31:0] _merged_T_437 =
-    ~_merged_T_510 | _merged_T_516 & _merged_T_431 > _merged_T_425
-      ? _merged_T_431
-      : _merged_T_425;
-  wire [31:0] _merged_T_443 =
-    ~_merged_T_414 | _merged_T_432 & _merged_T_437 > _merged_T_419
-      ? _merged_T_437
-      : _merged_T_419;
-  wire [31:0] _merged_T_455 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_2 > _trackers_0_io_hi_2
-      ? _trackers_1_io_hi_2
-      : _trackers_0_io_hi_2;
-  wire [31:0] _merged_T_461 =
-    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_2 > _trackers_2_io_hi_2
-      ? _trackers_3_io_hi_2
-      : _trackers_2_io_hi_2;
-  wire        _merged_T_462 = _merged_T_450 | _merged_T_456;
-  wire [31:0] _merged_T_467 =
-    ~_merged_T_450 | _merged_T_456 & _merged_T_461 > _merged_T_455
-      ? _merged_T_461
-      : _merged_T_455;
-  wire [31:0] _merged_T_473 =
-    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_2 > _trackers_4_io_hi_2
-      ? _trackers_5_io_hi_2
-      : _trackers_4_io_hi_2;
-  wire [31:0] _merged_T_479 =
-    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_2 > _trackers_6_io_hi_2
-      ? _trackers_7_io_hi_2
-      : _trackers_6_io_hi_2;
-  wire        _merged_T_480 = _merged_T_468 | _merged_T_474;
-  wire [31:0] _merged_T_485 =
-    ~_merged_T_468 | _merged_T_474 & _merged_T_479 > _merged_T_473
-      ? _merged_T_479
-      : _merged_T_473;
-  wire [31:0] _merged_T_491 =
-    ~_merged_T_462 | _merged_T_480 & _merged_T_485 > _merged_T_467
-      ? _merged_T_485
-      : _merged_T_467;
-  wire [31:0] _merged_T_497 =
-    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_2 > _trackers_8_io_hi_2
-      ? _trackers_9_io_hi_2
-      : _trackers_8_io_hi_2;
-  wire [31:0] _merged_T_503 =
-    ~_trackers_10_io_any | _trackers_11_io_any
-    & _trackers_11_io_hi_2 > _trackers_10_io_hi_2
-      ? _trackers_11_io_hi_2
-      : _trackers_10_io_hi_2;
-  wire        _merged_T_504 = _merged_T_492 | _merged_T_498;
-  wire [31:0] _merged_T_509 =
-    ~_merged_T_492 | _merged_T_498 & _merged_T_503 > _merged_T_497
-      ? _merged_T_503
-      : _merged_T_497;
-  wire [31:0] _merged_T_515 =
-    ~_trackers_12_io_any | _trackers_13_io_any
-    & _trackers_13_io_hi_2 > _trackers_12_io_hi_2
-      ? _trackers_13_io_hi_2
-      : _trackers_12_io_hi_2;
-  wire [31:0] _merged_T_521 =
-    ~_trackers_14_io_any | _trackers_15_io_any
-    & _trackers_15_io_hi_2 > _trackers_14_io_hi_2
-      ? _trackers_15_io_hi_2
-      : _trackers_14_io_hi_2;
-  wire        _merged_T_522 = _merged_T_510 | _merged_T_516;
-  wire [31:0] _merged_T_527 =
-    ~_merged_T_510 | _merged_T_516 & _merged_T_521 > _merged_T_515
-      ? _merged_T_521
-      : _merged_T_515;
-  wire [31:0] _merged_T_533 =
-    ~_merged_T_504 | _merged_T_522 & _merged_T_527 > _merged_T_509
-      ? _merged_T_527
-      : _merged_T_509;
+     reading_0} == 16'h0 & inflight == 8'h0;
+  wire        _merged_T_75 = _trackers_0_io_any | _trackers_1_io_any;
+  wire        _merged_T_76 = _trackers_2_io_any | _trackers_3_io_any;
+  wire        _merged_T_78 = _trackers_4_io_any | _trackers_5_io_any;
+  wire        _merged_T_79 = _trackers_6_io_any | _trackers_7_io_any;
+  wire        _merged_T_82 = _trackers_8_io_any | _trackers_9_io_any;
+  wire        _merged_T_83 = _trackers_10_io_any | _trackers_11_io_any;
+  wire        _merged_T_85 = _trackers_12_io_any | _trackers_13_io_any;
+  wire        _merged_T_86 = _trackers_14_io_any | _trackers_15_io_any;
   wire [19:0] _extent_T_3 =
     {_corners_k_1_io_out_cell_1[19], _corners_k_1_io_out_cell_1[19:1]}
     - {_corners_k_io_out_cell_1[19], _corners_k_io_out_cell_1[19:1]};
   wire [20:0] extent_1 = {_extent_T_3[19], _extent_T_3} + 21'h1;
-  wire        _GEN_30 = boxCycle == 2'h1;
-  wire        _GEN_31 = boxCycle == 2'h2;
+  wire        boxDone = boxCycle == 5'h10;
+  wire        _GEN_31 = boxCycle == 5'hE;
+  wire        _GEN_32 = boxCycle == 5'hF;
   wire [49:0] _words_T_1 = {places, 3'h0} + 50'h1F;
-  wire [13:0] _GEN_32 = {_words_T_1[13:5], 5'h0};
-  wire        _GEN_33 =
-    _GEN_5 & (&boxCycle) & anyBox
+  wire [13:0] _GEN_33 = {_words_T_1[13:5], 5'h0};
+  wire        _GEN_34 =
+    _GEN_5 & boxDone & anyBox
     & places <= {18'h0, 29'h1 << ((|(usedLog2[3:2])) ? usedLog2 - 4'h3 : 4'h0)}
     & {_words_T_1[49:5], 5'h0} < {36'h0, _sorts_3_io_in_1_bits_bucket_mask_T[13:0]};
   wire        largeHere_0 =
@@ -101130,39 +102598,39 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        largeHere_7 =
     classifying & _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
     & ~_laneKeys_7_io_out_needNone & _sorts_3_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_34 = {1'h0, largeCount};
-  wire        _GEN_35 = _GEN_34 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_34 + {5'h0, largeHere_0};
-  wire        _GEN_36 = slot_1 < 6'h10;
-  wire [1:0]  _GEN_37 = {1'h0, largeHere_0};
-  wire [1:0]  _GEN_38 = {1'h0, largeHere_1};
-  wire [1:0]  _largeNew_T_1 = _GEN_37 + _GEN_38;
-  wire [5:0]  slot_2 = _GEN_34 + {4'h0, _largeNew_T_1};
-  wire        _GEN_39 = slot_2 < 6'h10;
-  wire [1:0]  _GEN_40 = {1'h0, largeHere_2};
-  wire [1:0]  _slot_T_31 = _GEN_38 + _GEN_40;
-  wire [5:0]  slot_3 = _GEN_34 + {4'h0, _GEN_37 + _slot_T_31};
-  wire        _GEN_41 = slot_3 < 6'h10;
-  wire [1:0]  _GEN_42 = {1'h0, largeHere_3};
-  wire [2:0]  _GEN_43 = {1'h0, _largeNew_T_1};
-  wire [2:0]  _GEN_44 = {1'h0, _GEN_40 + _GEN_42};
-  wire [5:0]  slot_4 = _GEN_34 + {3'h0, _GEN_43 + _GEN_44};
-  wire        _GEN_45 = slot_4 < 6'h10;
-  wire [1:0]  _GEN_46 = {1'h0, largeHere_4};
-  wire [1:0]  _slot_T_35 = _GEN_42 + _GEN_46;
-  wire [5:0]  slot_5 = _GEN_34 + {3'h0, _GEN_43 + {1'h0, _GEN_40 + _slot_T_35}};
-  wire        _GEN_47 = slot_5 < 6'h10;
-  wire [1:0]  _GEN_48 = {1'h0, largeHere_5};
-  wire [1:0]  _largeNew_T_7 = _GEN_46 + _GEN_48;
+  wire [5:0]  _GEN_35 = {1'h0, largeCount};
+  wire        _GEN_36 = _GEN_35 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_35 + {5'h0, largeHere_0};
+  wire        _GEN_37 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_38 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_39 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_38 + _GEN_39;
+  wire [5:0]  slot_2 = _GEN_35 + {4'h0, _largeNew_T_1};
+  wire        _GEN_40 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_41 = {1'h0, largeHere_2};
+  wire [1:0]  _slot_T_31 = _GEN_39 + _GEN_41;
+  wire [5:0]  slot_3 = _GEN_35 + {4'h0, _GEN_38 + _slot_T_31};
+  wire        _GEN_42 = slot_3 < 6'h10;
+  wire [1:0]  _GEN_43 = {1'h0, largeHere_3};
+  wire [2:0]  _GEN_44 = {1'h0, _largeNew_T_1};
+  wire [2:0]  _GEN_45 = {1'h0, _GEN_41 + _GEN_43};
+  wire [5:0]  slot_4 = _GEN_35 + {3'h0, _GEN_44 + _GEN_45};
+  wire        _GEN_46 = slot_4 < 6'h10;
+  wire [1:0]  _GEN_47 = {1'h0, largeHere_4};
+  wire [1:0]  _slot_T_35 = _GEN_43 + _GEN_47;
+  wire [5:0]  slot_5 = _GEN_35 + {3'h0, _GEN_44 + {1'h0, _GEN_41 + _slot_T_35}};
+  wire        _GEN_48 = slot_5 < 6'h10;
+  wire [1:0]  _GEN_49 = {1'h0, largeHere_5};
+  wire [1:0]  _largeNew_T_7 = _GEN_47 + _GEN_49;
   wire [5:0]  slot_6 =
-    _GEN_34 + {3'h0, {1'h0, _GEN_37 + _slot_T_31} + {1'h0, _GEN_42 + _largeNew_T_7}};
-  wire        _GEN_49 = slot_6 < 6'h10;
-  wire [1:0]  _GEN_50 = {1'h0, largeHere_6};
+    _GEN_35 + {3'h0, {1'h0, _GEN_38 + _slot_T_31} + {1'h0, _GEN_43 + _largeNew_T_7}};
+  wire        _GEN_50 = slot_6 < 6'h10;
+  wire [1:0]  _GEN_51 = {1'h0, largeHere_6};
   wire [5:0]  slot_7 =
-    _GEN_34
+    _GEN_35
     + {3'h0,
-       {1'h0, _GEN_37 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_48 + _GEN_50}};
-  wire        _GEN_51 = slot_7 < 6'h10;
+       {1'h0, _GEN_38 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_49 + _GEN_51}};
+  wire        _GEN_52 = slot_7 < 6'h10;
   wire        wants_0 = _gens_0_io_need & ~held_0;
   wire        wants_1 = _gens_1_io_need & ~held_1;
   wire        wants_2 = _gens_2_io_need & ~held_2;
@@ -101216,28 +102684,28 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [15:0] _toUnit_T_1 = ~toSingle;
   wire [13:0] dBucket = {_deferred_ext_R0_data, dNext[2:0]};
   wire        _taken_T = wants_0 & _toUnit_T_1[0];
-  wire [16:0] _GEN_52 = {1'h0, next};
-  wire [16:0] _at_T_3 = _GEN_52 + {16'h0, _taken_T} - 17'h1;
-  wire [16:0] _GEN_53 = {6'h0, units};
+  wire [16:0] _GEN_53 = {1'h0, next};
+  wire [16:0] _at_T_3 = _GEN_53 + {16'h0, _taken_T} - 17'h1;
+  wire [16:0] _GEN_54 = {6'h0, units};
   wire [16:0] _at_T_10 =
-    _GEN_52 + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+    _GEN_53 + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
     - 17'h1;
   wire        _taken_T_1 = wants_1 & _toUnit_T_1[1];
   wire [16:0] _at_T_20 =
-    _GEN_52
+    _GEN_53
     + {15'h0,
        {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
          + {1'h0, wants_2 & _toUnit_T_1[2]}} - 17'h1;
   wire        _taken_T_2 = wants_2 & _toUnit_T_1[2];
   wire [16:0] _at_T_33 =
-    _GEN_52
+    _GEN_53
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
     - 17'h1;
   wire        _taken_T_3 = wants_3 & _toUnit_T_1[3];
   wire [16:0] _at_T_49 =
-    _GEN_52
+    _GEN_53
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0,
@@ -101245,7 +102713,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0, wants_4 & _toUnit_T_1[4]}}} - 17'h1;
   wire        _taken_T_4 = wants_4 & _toUnit_T_1[4];
   wire [16:0] _at_T_68 =
-    _GEN_52
+    _GEN_53
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -101255,7 +102723,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0, wants_5 & _toUnit_T_1[5]}}} - 17'h1;
   wire        _taken_T_5 = wants_5 & _toUnit_T_1[5];
   wire [16:0] _at_T_90 =
-    _GEN_52
+    _GEN_53
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -101265,7 +102733,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     - 17'h1;
   wire        _taken_T_6 = wants_6 & _toUnit_T_1[6];
   wire [16:0] _at_T_115 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -101277,7 +102745,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     - 17'h1;
   wire        _taken_T_7 = wants_7 & _toUnit_T_1[7];
   wire [16:0] _at_T_143 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -101289,7 +102757,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_8 & _toUnit_T_1[8]}}}} - 17'h1;
   wire        _taken_T_8 = wants_8 & _toUnit_T_1[8];
   wire [16:0] _at_T_174 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -101303,7 +102771,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_9 & _toUnit_T_1[9]}}}} - 17'h1;
   wire        _taken_T_9 = wants_9 & _toUnit_T_1[9];
   wire [16:0] _at_T_208 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -101319,7 +102787,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_10 & _toUnit_T_1[10]}}}} - 17'h1;
   wire        _taken_T_10 = wants_10 & _toUnit_T_1[10];
   wire [16:0] _at_T_245 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -101337,7 +102805,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_11 & _toUnit_T_1[11]}}}} - 17'h1;
   wire        _taken_T_11 = wants_11 & _toUnit_T_1[11];
   wire [16:0] _at_T_285 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -101357,7 +102825,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_12 & _toUnit_T_1[12]}}}} - 17'h1;
   wire        _taken_T_12 = wants_12 & _toUnit_T_1[12];
   wire [16:0] _at_T_328 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -101376,7 +102844,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_13 & _toUnit_T_1[13]}}}} - 17'h1;
   wire        _taken_T_13 = wants_13 & _toUnit_T_1[13];
   wire [16:0] _at_T_374 =
-    _GEN_52
+    _GEN_53
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -101396,7 +102864,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_14 & _toUnit_T_1[14]}}}} - 17'h1;
   wire        _taken_T_14 = wants_14 & _toUnit_T_1[14];
   wire [16:0] _at_T_423 =
-    _GEN_52
+    _GEN_53
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -101419,19 +102887,20 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                       {1'h0, wants_14 & _toUnit_T_1[14]}
                         + {1'h0, wants_15 & _toUnit_T_1[15]}}}}} - 17'h1;
   wire        _taken_T_15 = wants_15 & _toUnit_T_1[15];
-  wire        _GEN_54 = state != 4'h8 | ~sent;
-  wire        _GEN_55 = io_start | begin_0;
-  wire        _GEN_56 = passDone & _io_quiet_T_3 & ~sortBusy;
+  wire        _GEN_55 = state != 4'h9 | ~sent;
+  wire        _GEN_56 = io_start | begin_0;
+  wire        _GEN_57 = passDone & _io_quiet_T_3 & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_57 = sent & ~sortBusy;
-  wire        _GEN_58 = passDone & ~REG_8;
-  wire        _GEN_59 = _GEN_14 & _GEN_15 & pending;
-  wire        _GEN_60 = _GEN_8 | _GEN_9 | _GEN_5 | _GEN_11 | _GEN_12 | _GEN_13;
-  wire        _GEN_61 = _GEN_7 | _GEN_60;
-  wire        _GEN_62 = _GEN_61 | ~_GEN_59;
+  wire        _GEN_58 = _m_T >= mergeEnd;
+  wire        _GEN_59 = sent & ~sortBusy;
+  wire        _GEN_60 = passDone & ~REG_8;
+  wire        _GEN_61 = _GEN_15 & _GEN_16 & pending;
+  wire        _GEN_62 = _GEN_8 | _GEN_9 | _GEN_11 | _GEN_5 | _GEN_12 | _GEN_13 | _GEN_14;
+  wire        _GEN_63 = _GEN_7 | _GEN_62;
+  wire        _GEN_64 = _GEN_63 | ~_GEN_61;
   wire [18:0] _boxMap_origin_1_T = _corners_k_io_out_cell_1[19:1] - 19'h1;
   wire [16:0] taken =
-    _GEN_52
+    _GEN_53
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -101447,934 +102916,942 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0,
                  {1'h0, {1'h0, _taken_T_12} + {1'h0, _taken_T_13}}
                    + {1'h0, {1'h0, _taken_T_14} + {1'h0, _taken_T_15}}}}};
-  wire        _GEN_63 =
-    largeHere_7 & ~_GEN_51 | largeHere_6 & ~_GEN_49 | largeHere_5 & ~_GEN_47 | largeHere_4
-    & ~_GEN_45 | largeHere_3 & ~_GEN_41 | largeHere_2 & ~_GEN_39 | largeHere_1 & ~_GEN_36
-    | largeHere_0 & ~_GEN_35 | st_largeOverflow;
+  wire        _GEN_65 =
+    largeHere_7 & ~_GEN_52 | largeHere_6 & ~_GEN_50 | largeHere_5 & ~_GEN_48 | largeHere_4
+    & ~_GEN_46 | largeHere_3 & ~_GEN_42 | largeHere_2 & ~_GEN_40 | largeHere_1 & ~_GEN_37
+    | largeHere_0 & ~_GEN_36 | st_largeOverflow;
   wire [5:0]  largeNew =
-    _GEN_34
+    _GEN_35
     + {2'h0,
-       {1'h0, _GEN_43 + _GEN_44}
-         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_50 + {1'h0, largeHere_7}}}};
+       {1'h0, _GEN_44 + _GEN_45}
+         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_51 + {1'h0, largeHere_7}}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
-  wire        _heldUnit_0_T = _at_T_3 < _GEN_53;
-  wire        _heldUnit_1_T = _at_T_10 < _GEN_53;
-  wire        _heldUnit_2_T = _at_T_20 < _GEN_53;
-  wire        _heldUnit_3_T = _at_T_33 < _GEN_53;
-  wire        _heldUnit_4_T = _at_T_49 < _GEN_53;
-  wire        _heldUnit_5_T = _at_T_68 < _GEN_53;
-  wire        _heldUnit_6_T = _at_T_90 < _GEN_53;
-  wire        _heldUnit_7_T = _at_T_115 < _GEN_53;
-  wire        _heldUnit_8_T = _at_T_143 < _GEN_53;
-  wire        _heldUnit_9_T = _at_T_174 < _GEN_53;
-  wire        _heldUnit_10_T = _at_T_208 < _GEN_53;
-  wire        _heldUnit_11_T = _at_T_245 < _GEN_53;
-  wire        _heldUnit_12_T = _at_T_285 < _GEN_53;
-  wire        _heldUnit_13_T = _at_T_328 < _GEN_53;
-  wire        _heldUnit_14_T = _at_T_374 < _GEN_53;
-  wire        _heldUnit_15_T = _at_T_423 < _GEN_53;
-  wire        _GEN_64 = _GEN_60 | ~_GEN_16;
+  wire        _heldUnit_0_T = _at_T_3 < _GEN_54;
+  wire        _heldUnit_1_T = _at_T_10 < _GEN_54;
+  wire        _heldUnit_2_T = _at_T_20 < _GEN_54;
+  wire        _heldUnit_3_T = _at_T_33 < _GEN_54;
+  wire        _heldUnit_4_T = _at_T_49 < _GEN_54;
+  wire        _heldUnit_5_T = _at_T_68 < _GEN_54;
+  wire        _heldUnit_6_T = _at_T_90 < _GEN_54;
+  wire        _heldUnit_7_T = _at_T_115 < _GEN_54;
+  wire        _heldUnit_8_T = _at_T_143 < _GEN_54;
+  wire        _heldUnit_9_T = _at_T_174 < _GEN_54;
+  wire        _heldUnit_10_T = _at_T_208 < _GEN_54;
+  wire        _heldUnit_11_T = _at_T_245 < _GEN_54;
+  wire        _heldUnit_12_T = _at_T_285 < _GEN_54;
+  wire        _heldUnit_13_T = _at_T_328 < _GEN_54;
+  wire        _heldUnit_14_T = _at_T_374 < _GEN_54;
+  wire        _heldUnit_15_T = _at_T_423 < _GEN_54;
+  wire        _GEN_66 = _GEN_62 | ~_GEN_17;
   always @(posedge clock) begin
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h0) begin
-      larges_0_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h0) begin
+      larges_0_index <= r_79;
       larges_0_q_0 <= _laneKeys_7_io_out_q_0;
       larges_0_q_1 <= _laneKeys_7_io_out_q_1;
       larges_0_q_2 <= _laneKeys_7_io_out_q_2;
       larges_0_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h0) begin
-      larges_0_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h0) begin
+      larges_0_index <= r_69;
       larges_0_q_0 <= _laneKeys_6_io_out_q_0;
       larges_0_q_1 <= _laneKeys_6_io_out_q_1;
       larges_0_q_2 <= _laneKeys_6_io_out_q_2;
       larges_0_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h0) begin
-      larges_0_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h0) begin
+      larges_0_index <= r_59;
       larges_0_q_0 <= _laneKeys_5_io_out_q_0;
       larges_0_q_1 <= _laneKeys_5_io_out_q_1;
       larges_0_q_2 <= _laneKeys_5_io_out_q_2;
       larges_0_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h0) begin
-      larges_0_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h0) begin
+      larges_0_index <= r_49;
       larges_0_q_0 <= _laneKeys_4_io_out_q_0;
       larges_0_q_1 <= _laneKeys_4_io_out_q_1;
       larges_0_q_2 <= _laneKeys_4_io_out_q_2;
       larges_0_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h0) begin
-      larges_0_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h0) begin
+      larges_0_index <= r_39;
       larges_0_q_0 <= _laneKeys_3_io_out_q_0;
       larges_0_q_1 <= _laneKeys_3_io_out_q_1;
       larges_0_q_2 <= _laneKeys_3_io_out_q_2;
       larges_0_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h0) begin
-      larges_0_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h0) begin
+      larges_0_index <= r_29;
       larges_0_q_0 <= _laneKeys_2_io_out_q_0;
       larges_0_q_1 <= _laneKeys_2_io_out_q_1;
       larges_0_q_2 <= _laneKeys_2_io_out_q_2;
       larges_0_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h0) begin
-      larges_0_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h0) begin
+      larges_0_index <= r_19;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h0) begin
-      larges_0_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h0) begin
+      larges_0_index <= r_9;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h1) begin
-      larges_1_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h1) begin
+      larges_1_index <= r_79;
       larges_1_q_0 <= _laneKeys_7_io_out_q_0;
       larges_1_q_1 <= _laneKeys_7_io_out_q_1;
       larges_1_q_2 <= _laneKeys_7_io_out_q_2;
       larges_1_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h1) begin
-      larges_1_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h1) begin
+      larges_1_index <= r_69;
       larges_1_q_0 <= _laneKeys_6_io_out_q_0;
       larges_1_q_1 <= _laneKeys_6_io_out_q_1;
       larges_1_q_2 <= _laneKeys_6_io_out_q_2;
       larges_1_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h1) begin
-      larges_1_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h1) begin
+      larges_1_index <= r_59;
       larges_1_q_0 <= _laneKeys_5_io_out_q_0;
       larges_1_q_1 <= _laneKeys_5_io_out_q_1;
       larges_1_q_2 <= _laneKeys_5_io_out_q_2;
       larges_1_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h1) begin
-      larges_1_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h1) begin
+      larges_1_index <= r_49;
       larges_1_q_0 <= _laneKeys_4_io_out_q_0;
       larges_1_q_1 <= _laneKeys_4_io_out_q_1;
       larges_1_q_2 <= _laneKeys_4_io_out_q_2;
       larges_1_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h1) begin
-      larges_1_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h1) begin
+      larges_1_index <= r_39;
       larges_1_q_0 <= _laneKeys_3_io_out_q_0;
       larges_1_q_1 <= _laneKeys_3_io_out_q_1;
       larges_1_q_2 <= _laneKeys_3_io_out_q_2;
       larges_1_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h1) begin
-      larges_1_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h1) begin
+      larges_1_index <= r_29;
       larges_1_q_0 <= _laneKeys_2_io_out_q_0;
       larges_1_q_1 <= _laneKeys_2_io_out_q_1;
       larges_1_q_2 <= _laneKeys_2_io_out_q_2;
       larges_1_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h1) begin
-      larges_1_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h1) begin
+      larges_1_index <= r_19;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h1) begin
-      larges_1_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h1) begin
+      larges_1_index <= r_9;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h2) begin
-      larges_2_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h2) begin
+      larges_2_index <= r_79;
       larges_2_q_0 <= _laneKeys_7_io_out_q_0;
       larges_2_q_1 <= _laneKeys_7_io_out_q_1;
       larges_2_q_2 <= _laneKeys_7_io_out_q_2;
       larges_2_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h2) begin
-      larges_2_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h2) begin
+      larges_2_index <= r_69;
       larges_2_q_0 <= _laneKeys_6_io_out_q_0;
       larges_2_q_1 <= _laneKeys_6_io_out_q_1;
       larges_2_q_2 <= _laneKeys_6_io_out_q_2;
       larges_2_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h2) begin
-      larges_2_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h2) begin
+      larges_2_index <= r_59;
       larges_2_q_0 <= _laneKeys_5_io_out_q_0;
       larges_2_q_1 <= _laneKeys_5_io_out_q_1;
       larges_2_q_2 <= _laneKeys_5_io_out_q_2;
       larges_2_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h2) begin
-      larges_2_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h2) begin
+      larges_2_index <= r_49;
       larges_2_q_0 <= _laneKeys_4_io_out_q_0;
       larges_2_q_1 <= _laneKeys_4_io_out_q_1;
       larges_2_q_2 <= _laneKeys_4_io_out_q_2;
       larges_2_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h2) begin
-      larges_2_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h2) begin
+      larges_2_index <= r_39;
       larges_2_q_0 <= _laneKeys_3_io_out_q_0;
       larges_2_q_1 <= _laneKeys_3_io_out_q_1;
       larges_2_q_2 <= _laneKeys_3_io_out_q_2;
       larges_2_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h2) begin
-      larges_2_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h2) begin
+      larges_2_index <= r_29;
       larges_2_q_0 <= _laneKeys_2_io_out_q_0;
       larges_2_q_1 <= _laneKeys_2_io_out_q_1;
       larges_2_q_2 <= _laneKeys_2_io_out_q_2;
       larges_2_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h2) begin
-      larges_2_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h2) begin
+      larges_2_index <= r_19;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h2) begin
-      larges_2_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h2) begin
+      larges_2_index <= r_9;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h3) begin
-      larges_3_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h3) begin
+      larges_3_index <= r_79;
       larges_3_q_0 <= _laneKeys_7_io_out_q_0;
       larges_3_q_1 <= _laneKeys_7_io_out_q_1;
       larges_3_q_2 <= _laneKeys_7_io_out_q_2;
       larges_3_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h3) begin
-      larges_3_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h3) begin
+      larges_3_index <= r_69;
       larges_3_q_0 <= _laneKeys_6_io_out_q_0;
       larges_3_q_1 <= _laneKeys_6_io_out_q_1;
       larges_3_q_2 <= _laneKeys_6_io_out_q_2;
       larges_3_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h3) begin
-      larges_3_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h3) begin
+      larges_3_index <= r_59;
       larges_3_q_0 <= _laneKeys_5_io_out_q_0;
       larges_3_q_1 <= _laneKeys_5_io_out_q_1;
       larges_3_q_2 <= _laneKeys_5_io_out_q_2;
       larges_3_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h3) begin
-      larges_3_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h3) begin
+      larges_3_index <= r_49;
       larges_3_q_0 <= _laneKeys_4_io_out_q_0;
       larges_3_q_1 <= _laneKeys_4_io_out_q_1;
       larges_3_q_2 <= _laneKeys_4_io_out_q_2;
       larges_3_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h3) begin
-      larges_3_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h3) begin
+      larges_3_index <= r_39;
       larges_3_q_0 <= _laneKeys_3_io_out_q_0;
       larges_3_q_1 <= _laneKeys_3_io_out_q_1;
       larges_3_q_2 <= _laneKeys_3_io_out_q_2;
       larges_3_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h3) begin
-      larges_3_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h3) begin
+      larges_3_index <= r_29;
       larges_3_q_0 <= _laneKeys_2_io_out_q_0;
       larges_3_q_1 <= _laneKeys_2_io_out_q_1;
       larges_3_q_2 <= _laneKeys_2_io_out_q_2;
       larges_3_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h3) begin
-      larges_3_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h3) begin
+      larges_3_index <= r_19;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h3) begin
-      larges_3_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h3) begin
+      larges_3_index <= r_9;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h4) begin
-      larges_4_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h4) begin
+      larges_4_index <= r_79;
       larges_4_q_0 <= _laneKeys_7_io_out_q_0;
       larges_4_q_1 <= _laneKeys_7_io_out_q_1;
       larges_4_q_2 <= _laneKeys_7_io_out_q_2;
       larges_4_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h4) begin
-      larges_4_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h4) begin
+      larges_4_index <= r_69;
       larges_4_q_0 <= _laneKeys_6_io_out_q_0;
       larges_4_q_1 <= _laneKeys_6_io_out_q_1;
       larges_4_q_2 <= _laneKeys_6_io_out_q_2;
       larges_4_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h4) begin
-      larges_4_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h4) begin
+      larges_4_index <= r_59;
       larges_4_q_0 <= _laneKeys_5_io_out_q_0;
       larges_4_q_1 <= _laneKeys_5_io_out_q_1;
       larges_4_q_2 <= _laneKeys_5_io_out_q_2;
       larges_4_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h4) begin
-      larges_4_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h4) begin
+      larges_4_index <= r_49;
       larges_4_q_0 <= _laneKeys_4_io_out_q_0;
       larges_4_q_1 <= _laneKeys_4_io_out_q_1;
       larges_4_q_2 <= _laneKeys_4_io_out_q_2;
       larges_4_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h4) begin
-      larges_4_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h4) begin
+      larges_4_index <= r_39;
       larges_4_q_0 <= _laneKeys_3_io_out_q_0;
       larges_4_q_1 <= _laneKeys_3_io_out_q_1;
       larges_4_q_2 <= _laneKeys_3_io_out_q_2;
       larges_4_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h4) begin
-      larges_4_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h4) begin
+      larges_4_index <= r_29;
       larges_4_q_0 <= _laneKeys_2_io_out_q_0;
       larges_4_q_1 <= _laneKeys_2_io_out_q_1;
       larges_4_q_2 <= _laneKeys_2_io_out_q_2;
       larges_4_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h4) begin
-      larges_4_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h4) begin
+      larges_4_index <= r_19;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h4) begin
-      larges_4_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h4) begin
+      larges_4_index <= r_9;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h5) begin
-      larges_5_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h5) begin
+      larges_5_index <= r_79;
       larges_5_q_0 <= _laneKeys_7_io_out_q_0;
       larges_5_q_1 <= _laneKeys_7_io_out_q_1;
       larges_5_q_2 <= _laneKeys_7_io_out_q_2;
       larges_5_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h5) begin
-      larges_5_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h5) begin
+      larges_5_index <= r_69;
       larges_5_q_0 <= _laneKeys_6_io_out_q_0;
       larges_5_q_1 <= _laneKeys_6_io_out_q_1;
       larges_5_q_2 <= _laneKeys_6_io_out_q_2;
       larges_5_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h5) begin
-      larges_5_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h5) begin
+      larges_5_index <= r_59;
       larges_5_q_0 <= _laneKeys_5_io_out_q_0;
       larges_5_q_1 <= _laneKeys_5_io_out_q_1;
       larges_5_q_2 <= _laneKeys_5_io_out_q_2;
       larges_5_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h5) begin
-      larges_5_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h5) begin
+      larges_5_index <= r_49;
       larges_5_q_0 <= _laneKeys_4_io_out_q_0;
       larges_5_q_1 <= _laneKeys_4_io_out_q_1;
       larges_5_q_2 <= _laneKeys_4_io_out_q_2;
       larges_5_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h5) begin
-      larges_5_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h5) begin
+      larges_5_index <= r_39;
       larges_5_q_0 <= _laneKeys_3_io_out_q_0;
       larges_5_q_1 <= _laneKeys_3_io_out_q_1;
       larges_5_q_2 <= _laneKeys_3_io_out_q_2;
       larges_5_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h5) begin
-      larges_5_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h5) begin
+      larges_5_index <= r_29;
       larges_5_q_0 <= _laneKeys_2_io_out_q_0;
       larges_5_q_1 <= _laneKeys_2_io_out_q_1;
       larges_5_q_2 <= _laneKeys_2_io_out_q_2;
       larges_5_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h5) begin
-      larges_5_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h5) begin
+      larges_5_index <= r_19;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h5) begin
-      larges_5_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h5) begin
+      larges_5_index <= r_9;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h6) begin
-      larges_6_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h6) begin
+      larges_6_index <= r_79;
       larges_6_q_0 <= _laneKeys_7_io_out_q_0;
       larges_6_q_1 <= _laneKeys_7_io_out_q_1;
       larges_6_q_2 <= _laneKeys_7_io_out_q_2;
       larges_6_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h6) begin
-      larges_6_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h6) begin
+      larges_6_index <= r_69;
       larges_6_q_0 <= _laneKeys_6_io_out_q_0;
       larges_6_q_1 <= _laneKeys_6_io_out_q_1;
       larges_6_q_2 <= _laneKeys_6_io_out_q_2;
       larges_6_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h6) begin
-      larges_6_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h6) begin
+      larges_6_index <= r_59;
       larges_6_q_0 <= _laneKeys_5_io_out_q_0;
       larges_6_q_1 <= _laneKeys_5_io_out_q_1;
       larges_6_q_2 <= _laneKeys_5_io_out_q_2;
       larges_6_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h6) begin
-      larges_6_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h6) begin
+      larges_6_index <= r_49;
       larges_6_q_0 <= _laneKeys_4_io_out_q_0;
       larges_6_q_1 <= _laneKeys_4_io_out_q_1;
       larges_6_q_2 <= _laneKeys_4_io_out_q_2;
       larges_6_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h6) begin
-      larges_6_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h6) begin
+      larges_6_index <= r_39;
       larges_6_q_0 <= _laneKeys_3_io_out_q_0;
       larges_6_q_1 <= _laneKeys_3_io_out_q_1;
       larges_6_q_2 <= _laneKeys_3_io_out_q_2;
       larges_6_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h6) begin
-      larges_6_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h6) begin
+      larges_6_index <= r_29;
       larges_6_q_0 <= _laneKeys_2_io_out_q_0;
       larges_6_q_1 <= _laneKeys_2_io_out_q_1;
       larges_6_q_2 <= _laneKeys_2_io_out_q_2;
       larges_6_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h6) begin
-      larges_6_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h6) begin
+      larges_6_index <= r_19;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h6) begin
-      larges_6_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h6) begin
+      larges_6_index <= r_9;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h7) begin
-      larges_7_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h7) begin
+      larges_7_index <= r_79;
       larges_7_q_0 <= _laneKeys_7_io_out_q_0;
       larges_7_q_1 <= _laneKeys_7_io_out_q_1;
       larges_7_q_2 <= _laneKeys_7_io_out_q_2;
       larges_7_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h7) begin
-      larges_7_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h7) begin
+      larges_7_index <= r_69;
       larges_7_q_0 <= _laneKeys_6_io_out_q_0;
       larges_7_q_1 <= _laneKeys_6_io_out_q_1;
       larges_7_q_2 <= _laneKeys_6_io_out_q_2;
       larges_7_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h7) begin
-      larges_7_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h7) begin
+      larges_7_index <= r_59;
       larges_7_q_0 <= _laneKeys_5_io_out_q_0;
       larges_7_q_1 <= _laneKeys_5_io_out_q_1;
       larges_7_q_2 <= _laneKeys_5_io_out_q_2;
       larges_7_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h7) begin
-      larges_7_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h7) begin
+      larges_7_index <= r_49;
       larges_7_q_0 <= _laneKeys_4_io_out_q_0;
       larges_7_q_1 <= _laneKeys_4_io_out_q_1;
       larges_7_q_2 <= _laneKeys_4_io_out_q_2;
       larges_7_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h7) begin
-      larges_7_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h7) begin
+      larges_7_index <= r_39;
       larges_7_q_0 <= _laneKeys_3_io_out_q_0;
       larges_7_q_1 <= _laneKeys_3_io_out_q_1;
       larges_7_q_2 <= _laneKeys_3_io_out_q_2;
       larges_7_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h7) begin
-      larges_7_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h7) begin
+      larges_7_index <= r_29;
       larges_7_q_0 <= _laneKeys_2_io_out_q_0;
       larges_7_q_1 <= _laneKeys_2_io_out_q_1;
       larges_7_q_2 <= _laneKeys_2_io_out_q_2;
       larges_7_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h7) begin
-      larges_7_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h7) begin
+      larges_7_index <= r_19;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h7) begin
-      larges_7_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h7) begin
+      larges_7_index <= r_9;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h8) begin
-      larges_8_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h8) begin
+      larges_8_index <= r_79;
       larges_8_q_0 <= _laneKeys_7_io_out_q_0;
       larges_8_q_1 <= _laneKeys_7_io_out_q_1;
       larges_8_q_2 <= _laneKeys_7_io_out_q_2;
       larges_8_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h8) begin
-      larges_8_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h8) begin
+      larges_8_index <= r_69;
       larges_8_q_0 <= _laneKeys_6_io_out_q_0;
       larges_8_q_1 <= _laneKeys_6_io_out_q_1;
       larges_8_q_2 <= _laneKeys_6_io_out_q_2;
       larges_8_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h8) begin
-      larges_8_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h8) begin
+      larges_8_index <= r_59;
       larges_8_q_0 <= _laneKeys_5_io_out_q_0;
       larges_8_q_1 <= _laneKeys_5_io_out_q_1;
       larges_8_q_2 <= _laneKeys_5_io_out_q_2;
       larges_8_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h8) begin
-      larges_8_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h8) begin
+      larges_8_index <= r_49;
       larges_8_q_0 <= _laneKeys_4_io_out_q_0;
       larges_8_q_1 <= _laneKeys_4_io_out_q_1;
       larges_8_q_2 <= _laneKeys_4_io_out_q_2;
       larges_8_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h8) begin
-      larges_8_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h8) begin
+      larges_8_index <= r_39;
       larges_8_q_0 <= _laneKeys_3_io_out_q_0;
       larges_8_q_1 <= _laneKeys_3_io_out_q_1;
       larges_8_q_2 <= _laneKeys_3_io_out_q_2;
       larges_8_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h8) begin
-      larges_8_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h8) begin
+      larges_8_index <= r_29;
       larges_8_q_0 <= _laneKeys_2_io_out_q_0;
       larges_8_q_1 <= _laneKeys_2_io_out_q_1;
       larges_8_q_2 <= _laneKeys_2_io_out_q_2;
       larges_8_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h8) begin
-      larges_8_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h8) begin
+      larges_8_index <= r_19;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h8) begin
-      larges_8_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h8) begin
+      larges_8_index <= r_9;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h9) begin
-      larges_9_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'h9) begin
+      larges_9_index <= r_79;
       larges_9_q_0 <= _laneKeys_7_io_out_q_0;
       larges_9_q_1 <= _laneKeys_7_io_out_q_1;
       larges_9_q_2 <= _laneKeys_7_io_out_q_2;
       larges_9_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h9) begin
-      larges_9_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'h9) begin
+      larges_9_index <= r_69;
       larges_9_q_0 <= _laneKeys_6_io_out_q_0;
       larges_9_q_1 <= _laneKeys_6_io_out_q_1;
       larges_9_q_2 <= _laneKeys_6_io_out_q_2;
       larges_9_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h9) begin
-      larges_9_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'h9) begin
+      larges_9_index <= r_59;
       larges_9_q_0 <= _laneKeys_5_io_out_q_0;
       larges_9_q_1 <= _laneKeys_5_io_out_q_1;
       larges_9_q_2 <= _laneKeys_5_io_out_q_2;
       larges_9_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h9) begin
-      larges_9_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'h9) begin
+      larges_9_index <= r_49;
       larges_9_q_0 <= _laneKeys_4_io_out_q_0;
       larges_9_q_1 <= _laneKeys_4_io_out_q_1;
       larges_9_q_2 <= _laneKeys_4_io_out_q_2;
       larges_9_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h9) begin
-      larges_9_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'h9) begin
+      larges_9_index <= r_39;
       larges_9_q_0 <= _laneKeys_3_io_out_q_0;
       larges_9_q_1 <= _laneKeys_3_io_out_q_1;
       larges_9_q_2 <= _laneKeys_3_io_out_q_2;
       larges_9_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h9) begin
-      larges_9_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'h9) begin
+      larges_9_index <= r_29;
       larges_9_q_0 <= _laneKeys_2_io_out_q_0;
       larges_9_q_1 <= _laneKeys_2_io_out_q_1;
       larges_9_q_2 <= _laneKeys_2_io_out_q_2;
       larges_9_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h9) begin
-      larges_9_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'h9) begin
+      larges_9_index <= r_19;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h9) begin
-      larges_9_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'h9) begin
+      larges_9_index <= r_9;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hA) begin
-      larges_10_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'hA) begin
+      larges_10_index <= r_79;
       larges_10_q_0 <= _laneKeys_7_io_out_q_0;
       larges_10_q_1 <= _laneKeys_7_io_out_q_1;
       larges_10_q_2 <= _laneKeys_7_io_out_q_2;
       larges_10_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hA) begin
-      larges_10_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'hA) begin
+      larges_10_index <= r_69;
       larges_10_q_0 <= _laneKeys_6_io_out_q_0;
       larges_10_q_1 <= _laneKeys_6_io_out_q_1;
       larges_10_q_2 <= _laneKeys_6_io_out_q_2;
       larges_10_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hA) begin
-      larges_10_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'hA) begin
+      larges_10_index <= r_59;
       larges_10_q_0 <= _laneKeys_5_io_out_q_0;
       larges_10_q_1 <= _laneKeys_5_io_out_q_1;
       larges_10_q_2 <= _laneKeys_5_io_out_q_2;
       larges_10_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hA) begin
-      larges_10_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'hA) begin
+      larges_10_index <= r_49;
       larges_10_q_0 <= _laneKeys_4_io_out_q_0;
       larges_10_q_1 <= _laneKeys_4_io_out_q_1;
       larges_10_q_2 <= _laneKeys_4_io_out_q_2;
       larges_10_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hA) begin
-      larges_10_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'hA) begin
+      larges_10_index <= r_39;
       larges_10_q_0 <= _laneKeys_3_io_out_q_0;
       larges_10_q_1 <= _laneKeys_3_io_out_q_1;
       larges_10_q_2 <= _laneKeys_3_io_out_q_2;
       larges_10_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hA) begin
-      larges_10_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'hA) begin
+      larges_10_index <= r_29;
       larges_10_q_0 <= _laneKeys_2_io_out_q_0;
       larges_10_q_1 <= _laneKeys_2_io_out_q_1;
       larges_10_q_2 <= _laneKeys_2_io_out_q_2;
       larges_10_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hA) begin
-      larges_10_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'hA) begin
+      larges_10_index <= r_19;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hA) begin
-      larges_10_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'hA) begin
+      larges_10_index <= r_9;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hB) begin
-      larges_11_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'hB) begin
+      larges_11_index <= r_79;
       larges_11_q_0 <= _laneKeys_7_io_out_q_0;
       larges_11_q_1 <= _laneKeys_7_io_out_q_1;
       larges_11_q_2 <= _laneKeys_7_io_out_q_2;
       larges_11_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hB) begin
-      larges_11_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'hB) begin
+      larges_11_index <= r_69;
       larges_11_q_0 <= _laneKeys_6_io_out_q_0;
       larges_11_q_1 <= _laneKeys_6_io_out_q_1;
       larges_11_q_2 <= _laneKeys_6_io_out_q_2;
       larges_11_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hB) begin
-      larges_11_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'hB) begin
+      larges_11_index <= r_59;
       larges_11_q_0 <= _laneKeys_5_io_out_q_0;
       larges_11_q_1 <= _laneKeys_5_io_out_q_1;
       larges_11_q_2 <= _laneKeys_5_io_out_q_2;
       larges_11_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hB) begin
-      larges_11_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'hB) begin
+      larges_11_index <= r_49;
       larges_11_q_0 <= _laneKeys_4_io_out_q_0;
       larges_11_q_1 <= _laneKeys_4_io_out_q_1;
       larges_11_q_2 <= _laneKeys_4_io_out_q_2;
       larges_11_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hB) begin
-      larges_11_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'hB) begin
+      larges_11_index <= r_39;
       larges_11_q_0 <= _laneKeys_3_io_out_q_0;
       larges_11_q_1 <= _laneKeys_3_io_out_q_1;
       larges_11_q_2 <= _laneKeys_3_io_out_q_2;
       larges_11_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hB) begin
-      larges_11_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'hB) begin
+      larges_11_index <= r_29;
       larges_11_q_0 <= _laneKeys_2_io_out_q_0;
       larges_11_q_1 <= _laneKeys_2_io_out_q_1;
       larges_11_q_2 <= _laneKeys_2_io_out_q_2;
       larges_11_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hB) begin
-      larges_11_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'hB) begin
+      larges_11_index <= r_19;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hB) begin
-      larges_11_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'hB) begin
+      larges_11_index <= r_9;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hC) begin
-      larges_12_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'hC) begin
+      larges_12_index <= r_79;
       larges_12_q_0 <= _laneKeys_7_io_out_q_0;
       larges_12_q_1 <= _laneKeys_7_io_out_q_1;
       larges_12_q_2 <= _laneKeys_7_io_out_q_2;
       larges_12_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hC) begin
-      larges_12_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'hC) begin
+      larges_12_index <= r_69;
       larges_12_q_0 <= _laneKeys_6_io_out_q_0;
       larges_12_q_1 <= _laneKeys_6_io_out_q_1;
       larges_12_q_2 <= _laneKeys_6_io_out_q_2;
       larges_12_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hC) begin
-      larges_12_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'hC) begin
+      larges_12_index <= r_59;
       larges_12_q_0 <= _laneKeys_5_io_out_q_0;
       larges_12_q_1 <= _laneKeys_5_io_out_q_1;
       larges_12_q_2 <= _laneKeys_5_io_out_q_2;
       larges_12_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hC) begin
-      larges_12_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'hC) begin
+      larges_12_index <= r_49;
       larges_12_q_0 <= _laneKeys_4_io_out_q_0;
       larges_12_q_1 <= _laneKeys_4_io_out_q_1;
       larges_12_q_2 <= _laneKeys_4_io_out_q_2;
       larges_12_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hC) begin
-      larges_12_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'hC) begin
+      larges_12_index <= r_39;
       larges_12_q_0 <= _laneKeys_3_io_out_q_0;
       larges_12_q_1 <= _laneKeys_3_io_out_q_1;
       larges_12_q_2 <= _laneKeys_3_io_out_q_2;
       larges_12_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hC) begin
-      larges_12_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'hC) begin
+      larges_12_index <= r_29;
       larges_12_q_0 <= _laneKeys_2_io_out_q_0;
       larges_12_q_1 <= _laneKeys_2_io_out_q_1;
       larges_12_q_2 <= _laneKeys_2_io_out_q_2;
       larges_12_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hC) begin
-      larges_12_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'hC) begin
+      larges_12_index <= r_19;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hC) begin
-      larges_12_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'hC) begin
+      larges_12_index <= r_9;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hD) begin
-      larges_13_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'hD) begin
+      larges_13_index <= r_79;
       larges_13_q_0 <= _laneKeys_7_io_out_q_0;
       larges_13_q_1 <= _laneKeys_7_io_out_q_1;
       larges_13_q_2 <= _laneKeys_7_io_out_q_2;
       larges_13_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hD) begin
-      larges_13_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'hD) begin
+      larges_13_index <= r_69;
       larges_13_q_0 <= _laneKeys_6_io_out_q_0;
       larges_13_q_1 <= _laneKeys_6_io_out_q_1;
       larges_13_q_2 <= _laneKeys_6_io_out_q_2;
       larges_13_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hD) begin
-      larges_13_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'hD) begin
+      larges_13_index <= r_59;
       larges_13_q_0 <= _laneKeys_5_io_out_q_0;
       larges_13_q_1 <= _laneKeys_5_io_out_q_1;
       larges_13_q_2 <= _laneKeys_5_io_out_q_2;
       larges_13_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hD) begin
-      larges_13_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'hD) begin
+      larges_13_index <= r_49;
       larges_13_q_0 <= _laneKeys_4_io_out_q_0;
       larges_13_q_1 <= _laneKeys_4_io_out_q_1;
       larges_13_q_2 <= _laneKeys_4_io_out_q_2;
       larges_13_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hD) begin
-      larges_13_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'hD) begin
+      larges_13_index <= r_39;
       larges_13_q_0 <= _laneKeys_3_io_out_q_0;
       larges_13_q_1 <= _laneKeys_3_io_out_q_1;
       larges_13_q_2 <= _laneKeys_3_io_out_q_2;
       larges_13_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hD) begin
-      larges_13_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'hD) begin
+      larges_13_index <= r_29;
       larges_13_q_0 <= _laneKeys_2_io_out_q_0;
       larges_13_q_1 <= _laneKeys_2_io_out_q_1;
       larges_13_q_2 <= _laneKeys_2_io_out_q_2;
       larges_13_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hD) begin
-      larges_13_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'hD) begin
+      larges_13_index <= r_19;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hD) begin
-      larges_13_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'hD) begin
+      larges_13_index <= r_9;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hE) begin
-      larges_14_index <= r_7;
+    if (largeHere_7 & _GEN_52 & slot_7[3:0] == 4'hE) begin
+      larges_14_index <= r_79;
       larges_14_q_0 <= _laneKeys_7_io_out_q_0;
       larges_14_q_1 <= _laneKeys_7_io_out_q_1;
       larges_14_q_2 <= _laneKeys_7_io_out_q_2;
       larges_14_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hE) begin
-      larges_14_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & slot_6[3:0] == 4'hE) begin
+      larges_14_index <= r_69;
       larges_14_q_0 <= _laneKeys_6_io_out_q_0;
       larges_14_q_1 <= _laneKeys_6_io_out_q_1;
       larges_14_q_2 <= _laneKeys_6_io_out_q_2;
       larges_14_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hE) begin
-      larges_14_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & slot_5[3:0] == 4'hE) begin
+      larges_14_index <= r_59;
       larges_14_q_0 <= _laneKeys_5_io_out_q_0;
       larges_14_q_1 <= _laneKeys_5_io_out_q_1;
       larges_14_q_2 <= _laneKeys_5_io_out_q_2;
       larges_14_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hE) begin
-      larges_14_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & slot_4[3:0] == 4'hE) begin
+      larges_14_index <= r_49;
       larges_14_q_0 <= _laneKeys_4_io_out_q_0;
       larges_14_q_1 <= _laneKeys_4_io_out_q_1;
       larges_14_q_2 <= _laneKeys_4_io_out_q_2;
       larges_14_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hE) begin
-      larges_14_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & slot_3[3:0] == 4'hE) begin
+      larges_14_index <= r_39;
       larges_14_q_0 <= _laneKeys_3_io_out_q_0;
       larges_14_q_1 <= _laneKeys_3_io_out_q_1;
       larges_14_q_2 <= _laneKeys_3_io_out_q_2;
       larges_14_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hE) begin
-      larges_14_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & slot_2[3:0] == 4'hE) begin
+      larges_14_index <= r_29;
       larges_14_q_0 <= _laneKeys_2_io_out_q_0;
       larges_14_q_1 <= _laneKeys_2_io_out_q_1;
       larges_14_q_2 <= _laneKeys_2_io_out_q_2;
       larges_14_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hE) begin
-      larges_14_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & slot_1[3:0] == 4'hE) begin
+      larges_14_index <= r_19;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hE) begin
-      larges_14_index <= r;
+    else if (largeHere_0 & _GEN_36 & largeCount[3:0] == 4'hE) begin
+      larges_14_index <= r_9;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_51 & (&(slot_7[3:0]))) begin
-      larges_15_index <= r_7;
+    if (largeHere_7 & _GEN_52 & (&(slot_7[3:0]))) begin
+      larges_15_index <= r_79;
       larges_15_q_0 <= _laneKeys_7_io_out_q_0;
       larges_15_q_1 <= _laneKeys_7_io_out_q_1;
       larges_15_q_2 <= _laneKeys_7_io_out_q_2;
       larges_15_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_49 & (&(slot_6[3:0]))) begin
-      larges_15_index <= r_6;
+    else if (largeHere_6 & _GEN_50 & (&(slot_6[3:0]))) begin
+      larges_15_index <= r_69;
       larges_15_q_0 <= _laneKeys_6_io_out_q_0;
       larges_15_q_1 <= _laneKeys_6_io_out_q_1;
       larges_15_q_2 <= _laneKeys_6_io_out_q_2;
       larges_15_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_47 & (&(slot_5[3:0]))) begin
-      larges_15_index <= r_5;
+    else if (largeHere_5 & _GEN_48 & (&(slot_5[3:0]))) begin
+      larges_15_index <= r_59;
       larges_15_q_0 <= _laneKeys_5_io_out_q_0;
       larges_15_q_1 <= _laneKeys_5_io_out_q_1;
       larges_15_q_2 <= _laneKeys_5_io_out_q_2;
       larges_15_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_45 & (&(slot_4[3:0]))) begin
-      larges_15_index <= r_4;
+    else if (largeHere_4 & _GEN_46 & (&(slot_4[3:0]))) begin
+      larges_15_index <= r_49;
       larges_15_q_0 <= _laneKeys_4_io_out_q_0;
       larges_15_q_1 <= _laneKeys_4_io_out_q_1;
       larges_15_q_2 <= _laneKeys_4_io_out_q_2;
       larges_15_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_41 & (&(slot_3[3:0]))) begin
-      larges_15_index <= r_3;
+    else if (largeHere_3 & _GEN_42 & (&(slot_3[3:0]))) begin
+      larges_15_index <= r_39;
       larges_15_q_0 <= _laneKeys_3_io_out_q_0;
       larges_15_q_1 <= _laneKeys_3_io_out_q_1;
       larges_15_q_2 <= _laneKeys_3_io_out_q_2;
       larges_15_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_39 & (&(slot_2[3:0]))) begin
-      larges_15_index <= r_2;
+    else if (largeHere_2 & _GEN_40 & (&(slot_2[3:0]))) begin
+      larges_15_index <= r_29;
       larges_15_q_0 <= _laneKeys_2_io_out_q_0;
       larges_15_q_1 <= _laneKeys_2_io_out_q_1;
       larges_15_q_2 <= _laneKeys_2_io_out_q_2;
       larges_15_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_36 & (&(slot_1[3:0]))) begin
-      larges_15_index <= r_1;
+    else if (largeHere_1 & _GEN_37 & (&(slot_1[3:0]))) begin
+      larges_15_index <= r_19;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_35 & (&(largeCount[3:0]))) begin
-      larges_15_index <= r;
+    else if (largeHere_0 & _GEN_36 & (&(largeCount[3:0]))) begin
+      larges_15_index <= r_9;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
+    if (~(~(|state) | _GEN_7 | _GEN_8)) begin
+      if (_GEN_9) begin
+        if (_GEN_58)
+          settle <= 2'h0;
+      end
+      else if (_GEN_11)
+        settle <= settle + 2'h1;
+    end
     if (beginAhead)
       pendingNum <= io_num;
     if (|state) begin
-      if (_GEN_62) begin
+      if (_GEN_64) begin
       end
       else begin
         num <= pendingNum;
@@ -102415,9 +103892,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
           if (reading_15)
             i_15 <= i_15 + 13'h1;
         end
-        else if (~_GEN_9) begin
+        else if (~(_GEN_9 | _GEN_11)) begin
           if (_GEN_5) begin
-            if (&boxCycle) begin
+            if (boxDone) begin
               i_0 <= 13'h0;
               i_1 <= _GEN_1;
               i_2 <= _GEN_2;
@@ -102435,62 +103912,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               i_14 <= 13'h0;
               i_15 <= 13'h0;
             end
-          end
-          else if (_GEN_11) begin
-            if (reading_0)
-              i_0 <= i_0 + 13'h1;
-            if (reading_1)
-              i_1 <= i_1 + 13'h1;
-            if (reading_2)
-              i_2 <= i_2 + 13'h1;
-            if (reading_3)
-              i_3 <= i_3 + 13'h1;
-            if (reading_4)
-              i_4 <= i_4 + 13'h1;
-            if (reading_5)
-              i_5 <= i_5 + 13'h1;
-            if (reading_6)
-              i_6 <= i_6 + 13'h1;
-            if (reading_7)
-              i_7 <= i_7 + 13'h1;
-            if (reading_8)
-              i_8 <= i_8 + 13'h1;
-            if (reading_9)
-              i_9 <= i_9 + 13'h1;
-            if (reading_10)
-              i_10 <= i_10 + 13'h1;
-            if (reading_11)
-              i_11 <= i_11 + 13'h1;
-            if (reading_12)
-              i_12 <= i_12 + 13'h1;
-            if (reading_13)
-              i_13 <= i_13 + 13'h1;
-            if (reading_14)
-              i_14 <= i_14 + 13'h1;
-            if (reading_15)
-              i_15 <= i_15 + 13'h1;
           end
           else if (_GEN_12) begin
-            if (_GEN_57) begin
-              i_0 <= 13'h0;
-              i_1 <= _GEN_1;
-              i_2 <= _GEN_2;
-              i_3 <= {1'h0, _i_3_T_10[14:3]};
-              i_4 <= {1'h0, num[12:1]};
-              i_5 <= _i_5_T_9[15:3];
-              i_6 <= _i_6_T_9[15:3];
-              i_7 <= _i_7_T_9[15:3];
-              i_8 <= 13'h0;
-              i_9 <= 13'h0;
-              i_10 <= 13'h0;
-              i_11 <= 13'h0;
-              i_12 <= 13'h0;
-              i_13 <= 13'h0;
-              i_14 <= 13'h0;
-              i_15 <= 13'h0;
-            end
-          end
-          else if (_GEN_13) begin
             if (reading_0)
               i_0 <= i_0 + 13'h1;
             if (reading_1)
@@ -102524,7 +103947,61 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
             if (reading_15)
               i_15 <= i_15 + 13'h1;
           end
-          else if (_GEN_59) begin
+          else if (_GEN_13) begin
+            if (_GEN_59) begin
+              i_0 <= 13'h0;
+              i_1 <= _GEN_1;
+              i_2 <= _GEN_2;
+              i_3 <= {1'h0, _i_3_T_10[14:3]};
+              i_4 <= {1'h0, num[12:1]};
+              i_5 <= _i_5_T_9[15:3];
+              i_6 <= _i_6_T_9[15:3];
+              i_7 <= _i_7_T_9[15:3];
+              i_8 <= 13'h0;
+              i_9 <= 13'h0;
+              i_10 <= 13'h0;
+              i_11 <= 13'h0;
+              i_12 <= 13'h0;
+              i_13 <= 13'h0;
+              i_14 <= 13'h0;
+              i_15 <= 13'h0;
+            end
+          end
+          else if (_GEN_14) begin
+            if (reading_0)
+              i_0 <= i_0 + 13'h1;
+            if (reading_1)
+              i_1 <= i_1 + 13'h1;
+            if (reading_2)
+              i_2 <= i_2 + 13'h1;
+            if (reading_3)
+              i_3 <= i_3 + 13'h1;
+            if (reading_4)
+              i_4 <= i_4 + 13'h1;
+            if (reading_5)
+              i_5 <= i_5 + 13'h1;
+            if (reading_6)
+              i_6 <= i_6 + 13'h1;
+            if (reading_7)
+              i_7 <= i_7 + 13'h1;
+            if (reading_8)
+              i_8 <= i_8 + 13'h1;
+            if (reading_9)
+              i_9 <= i_9 + 13'h1;
+            if (reading_10)
+              i_10 <= i_10 + 13'h1;
+            if (reading_11)
+              i_11 <= i_11 + 13'h1;
+            if (reading_12)
+              i_12 <= i_12 + 13'h1;
+            if (reading_13)
+              i_13 <= i_13 + 13'h1;
+            if (reading_14)
+              i_14 <= i_14 + 13'h1;
+            if (reading_15)
+              i_15 <= i_15 + 13'h1;
+          end
+          else if (_GEN_61) begin
             i_0 <= {4'h0, pendingNum[12:4]};
             i_1 <= {3'h0, pendingNum[12:3]};
             i_2 <= {2'h0, _cuts_T_80[26:16]};
@@ -102544,23 +104021,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
           end
         end
       end
-      if (_GEN_62) begin
-        if (_GEN_33)
-          walkBuckets <= _GEN_32;
+      if (_GEN_64) begin
+        if (_GEN_34)
+          walkBuckets <= _GEN_33;
       end
       else
         walkBuckets <= _walkBuckets_T_11[13:0];
     end
     else begin
-      if (_GEN_55)
+      if (_GEN_56)
         num <= io_num;
       if (io_start) begin
         usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
         i_0 <= 13'h0;
-        i_1 <= _GEN_19;
-        i_2 <= _GEN_21;
+        i_1 <= _GEN_20;
+        i_2 <= _GEN_22;
         i_3 <= {2'h0, _cuts_T_6[26:16]};
-        i_4 <= _GEN_23;
+        i_4 <= _GEN_24;
         i_5 <= {1'h0, _cuts_T_12[27:16]};
         i_6 <= {1'h0, _cuts_T_15[27:16]};
         i_7 <= {1'h0, _cuts_T_18[27:16]};
@@ -102576,10 +104053,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       end
       else if (begin_0) begin
         usedLog2 <= usedLog2_t_1 > 6'hD ? 4'hD : usedLog2_t_1[3:0];
-        i_0 <= _GEN_19;
-        i_1 <= _GEN_21;
+        i_0 <= _GEN_20;
+        i_1 <= _GEN_22;
         i_2 <= {2'h0, _cuts_T_43[26:16]};
-        i_3 <= _GEN_23;
+        i_3 <= _GEN_24;
         i_4 <= {1'h0, _cuts_T_49[27:16]};
         i_5 <= {1'h0, _cuts_T_52[27:16]};
         i_6 <= {1'h0, _cuts_T_55[27:16]};
@@ -102594,32 +104071,104 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         i_15 <= io_num;
         walkBuckets <= _walkBuckets_T_7[13:0];
       end
-      else if (_GEN_33)
-        walkBuckets <= _GEN_32;
+      else if (_GEN_34)
+        walkBuckets <= _GEN_33;
     end
-    if (~(~(|state) | _GEN_7 | _GEN_8 | _GEN_9 | _GEN_5)) begin
-      if (_GEN_11)
+    if (~(~(|state) | _GEN_7 | _GEN_8 | _GEN_9 | _GEN_11 | _GEN_5)) begin
+      if (_GEN_12)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_12 | (_GEN_13 ? ~_GEN_58 & sent : _GEN_14 | sent);
+        sent <= _GEN_13 | (_GEN_14 ? ~_GEN_60 & sent : _GEN_15 | sent);
     end
     REG <= i_0[11:0];
     r <= REG;
+    r_1 <= r;
+    r_2 <= r_1;
+    r_3 <= r_2;
+    r_4 <= r_3;
+    r_5 <= r_4;
+    r_6 <= r_5;
+    r_7 <= r_6;
+    r_8 <= r_7;
+    r_9 <= r_8;
     REG_1 <= i_1[11:0];
-    r_1 <= REG_1;
+    r_10 <= REG_1;
+    r_11 <= r_10;
+    r_12 <= r_11;
+    r_13 <= r_12;
+    r_14 <= r_13;
+    r_15 <= r_14;
+    r_16 <= r_15;
+    r_17 <= r_16;
+    r_18 <= r_17;
+    r_19 <= r_18;
     REG_2 <= i_2[11:0];
-    r_2 <= REG_2;
+    r_20 <= REG_2;
+    r_21 <= r_20;
+    r_22 <= r_21;
+    r_23 <= r_22;
+    r_24 <= r_23;
+    r_25 <= r_24;
+    r_26 <= r_25;
+    r_27 <= r_26;
+    r_28 <= r_27;
+    r_29 <= r_28;
     REG_3 <= i_3[11:0];
-    r_3 <= REG_3;
+    r_30 <= REG_3;
+    r_31 <= r_30;
+    r_32 <= r_31;
+    r_33 <= r_32;
+    r_34 <= r_33;
+    r_35 <= r_34;
+    r_36 <= r_35;
+    r_37 <= r_36;
+    r_38 <= r_37;
+    r_39 <= r_38;
     REG_4 <= i_4[11:0];
-    r_4 <= REG_4;
+    r_40 <= REG_4;
+    r_41 <= r_40;
+    r_42 <= r_41;
+    r_43 <= r_42;
+    r_44 <= r_43;
+    r_45 <= r_44;
+    r_46 <= r_45;
+    r_47 <= r_46;
+    r_48 <= r_47;
+    r_49 <= r_48;
     REG_5 <= i_5[11:0];
-    r_5 <= REG_5;
+    r_50 <= REG_5;
+    r_51 <= r_50;
+    r_52 <= r_51;
+    r_53 <= r_52;
+    r_54 <= r_53;
+    r_55 <= r_54;
+    r_56 <= r_55;
+    r_57 <= r_56;
+    r_58 <= r_57;
+    r_59 <= r_58;
     REG_6 <= i_6[11:0];
-    r_6 <= REG_6;
+    r_60 <= REG_6;
+    r_61 <= r_60;
+    r_62 <= r_61;
+    r_63 <= r_62;
+    r_64 <= r_63;
+    r_65 <= r_64;
+    r_66 <= r_65;
+    r_67 <= r_66;
+    r_68 <= r_67;
+    r_69 <= r_68;
     REG_7 <= i_7[11:0];
-    r_7 <= REG_7;
-    if (_GEN_5 & _GEN_30) begin
+    r_70 <= REG_7;
+    r_71 <= r_70;
+    r_72 <= r_71;
+    r_73 <= r_72;
+    r_74 <= r_73;
+    r_75 <= r_74;
+    r_76 <= r_75;
+    r_77 <= r_76;
+    r_78 <= r_77;
+    r_79 <= r_78;
+    if (_GEN_5 & _GEN_31) begin
       boxMap_origin_0 <= {_boxMap_origin_0_T[18], _boxMap_origin_0_T};
       boxMap_origin_1 <= {_boxMap_origin_1_T[18], _boxMap_origin_1_T};
       boxMap_origin_2 <= {_boxMap_origin_2_T[18], _boxMap_origin_2_T};
@@ -102631,53 +104180,489 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         * {16'h0, {1'h0, (|(extent_1[20:14])) ? 15'h4000 : extent_1[14:0]} + 16'h1};
     end
     if (_GEN_5) begin
-      if (_GEN_31)
+      if (_GEN_32)
         boxMap_rxy <= boxMap_rxy * boxMap_rx;
-      else if (_GEN_30)
+      else if (_GEN_31)
         boxMap_rxy <= extent_1[12:0] + 13'h1;
     end
+    merged_key <=
+      ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_0 < _trackers_0_io_lo_0
+        ? _trackers_1_io_lo_0
+        : _trackers_0_io_lo_0;
+    merged_REG <= _merged_T_75;
+    merged_key_1 <=
+      ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_0 < _trackers_2_io_lo_0
+        ? _trackers_3_io_lo_0
+        : _trackers_2_io_lo_0;
+    merged_REG_1 <= _merged_T_76;
+    merged_key_2 <=
+      ~merged_REG | merged_REG_1 & merged_key_1 < merged_key ? merged_key_1 : merged_key;
+    merged_REG_2 <= merged_REG | merged_REG_1;
+    merged_key_3 <=
+      ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_0 < _trackers_4_io_lo_0
+        ? _trackers_5_io_lo_0
+        : _trackers_4_io_lo_0;
+    merged_REG_3 <= _merged_T_78;
+    merged_key_4 <=
+      ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_0 < _trackers_6_io_lo_0
+        ? _trackers_7_io_lo_0
+        : _trackers_6_io_lo_0;
+    merged_REG_4 <= _merged_T_79;
+    merged_key_5 <=
+      ~merged_REG_3 | merged_REG_4 & merged_key_4 < merged_key_3
+        ? merged_key_4
+        : merged_key_3;
+    merged_REG_5 <= merged_REG_3 | merged_REG_4;
+    merged_key_6 <=
+      ~merged_REG_2 | merged_REG_5 & merged_key_5 < merged_key_2
+        ? merged_key_5
+        : merged_key_2;
+    merged_REG_6 <= merged_REG_2 | merged_REG_5;
+    merged_key_7 <=
+      ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_0 < _trackers_8_io_lo_0
+        ? _trackers_9_io_lo_0
+        : _trackers_8_io_lo_0;
+    merged_REG_7 <= _merged_T_82;
+    merged_key_8 <=
+      ~_trackers_10_io_any | _trackers_11_io_any
+      & _trackers_11_io_lo_0 < _trackers_10_io_lo_0
+        ? _trackers_11_io_lo_0
+        : _trackers_10_io_lo_0;
+    merged_REG_8 <= _merged_T_83;
+    merged_key_9 <=
+      ~merged_REG_7 | merged_REG_8 & merged_key_8 < merged_key_7
+        ? merged_key_8
+        : merged_key_7;
+    merged_REG_9 <= merged_REG_7 | merged_REG_8;
+    merged_key_10 <=
+      ~_trackers_12_io_any | _trackers_13_io_any
+      & _trackers_13_io_lo_0 < _trackers_12_io_lo_0
+        ? _trackers_13_io_lo_0
+        : _trackers_12_io_lo_0;
+    merged_REG_10 <= _merged_T_85;
+    merged_key_11 <=
+      ~_trackers_14_io_any | _trackers_15_io_any
+      & _trackers_15_io_lo_0 < _trackers_14_io_lo_0
+        ? _trackers_15_io_lo_0
+        : _trackers_14_io_lo_0;
+    merged_REG_11 <= _merged_T_86;
+    merged_key_12 <=
+      ~merged_REG_10 | merged_REG_11 & merged_key_11 < merged_key_10
+        ? merged_key_11
+        : merged_key_10;
+    merged_REG_12 <= merged_REG_10 | merged_REG_11;
+    merged_key_13 <=
+      ~merged_REG_9 | merged_REG_12 & merged_key_12 < merged_key_9
+        ? merged_key_12
+        : merged_key_9;
+    merged_REG_13 <= merged_REG_9 | merged_REG_12;
+    merged_key_14 <=
+      ~merged_REG_6 | merged_REG_13 & merged_key_13 < merged_key_6
+        ? merged_key_13
+        : merged_key_6;
+    merged_key_15 <=
+      ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_1 < _trackers_0_io_lo_1
+        ? _trackers_1_io_lo_1
+        : _trackers_0_io_lo_1;
+    merged_REG_15 <= _merged_T_75;
+    merged_key_16 <=
+      ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_1 < _trackers_2_io_lo_1
+        ? _trackers_3_io_lo_1
+        : _trackers_2_io_lo_1;
+    merged_REG_16 <= _merged_T_76;
+    merged_key_17 <=
+      ~merged_REG_15 | merged_REG_16 & merged_key_16 < merged_key_15
+        ? merged_key_16
+        : merged_key_15;
+    merged_REG_17 <= merged_REG_15 | merged_REG_16;
+    merged_key_18 <=
+      ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_1 < _trackers_4_io_lo_1
+        ? _trackers_5_io_lo_1
+        : _trackers_4_io_lo_1;
+    merged_REG_18 <= _merged_T_78;
+    merged_key_19 <=
+      ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_1 < _trackers_6_io_lo_1
+        ? _trackers_7_io_lo_1
+        : _trackers_6_io_lo_1;
+    merged_REG_19 <= _merged_T_79;
+    merged_key_20 <=
+      ~merged_REG_18 | merged_REG_19 & merged_key_19 < merged_key_18
+        ? merged_key_19
+        : merged_key_18;
+    merged_REG_20 <= merged_REG_18 | merged_REG_19;
+    merged_key_21 <=
+      ~merged_REG_17 | merged_REG_20 & merged_key_20 < merged_key_17
+        ? merged_key_20
+        : merged_key_17;
+    merged_REG_21 <= merged_REG_17 | merged_REG_20;
+    merged_key_22 <=
+      ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_1 < _trackers_8_io_lo_1
+        ? _trackers_9_io_lo_1
+        : _trackers_8_io_lo_1;
+    merged_REG_22 <= _merged_T_82;
+    merged_key_23 <=
+      ~_trackers_10_io_any | _trackers_11_io_any
+      & _trackers_11_io_lo_1 < _trackers_10_io_lo_1
+        ? _trackers_11_io_lo_1
+        : _trackers_10_io_lo_1;
+    merged_REG_23 <= _merged_T_83;
+    merged_key_24 <=
+      ~merged_REG_22 | merged_REG_23 & merged_key_23 < merged_key_22
+        ? merged_key_23
+        : merged_key_22;
+    merged_REG_24 <= merged_REG_22 | merged_REG_23;
+    merged_key_25 <=
+      ~_trackers_12_io_any | _trackers_13_io_any
+      & _trackers_13_io_lo_1 < _trackers_12_io_lo_1
+        ? _trackers_13_io_lo_1
+        : _trackers_12_io_lo_1;
+    merged_REG_25 <= _merged_T_85;
+    merged_key_26 <=
+      ~_trackers_14_io_any | _trackers_15_io_any
+      & _trackers_15_io_lo_1 < _trackers_14_io_lo_1
+        ? _trackers_15_io_lo_1
+        : _trackers_14_io_lo_1;
+    merged_REG_26 <= _merged_T_86;
+    merged_key_27 <=
+      ~merged_REG_25 | merged_REG_26 & merged_key_26 < merged_key_25
+        ? merged_key_26
+        : merged_key_25;
+    merged_REG_27 <= merged_REG_25 | merged_REG_26;
+    merged_key_28 <=
+      ~merged_REG_24 | merged_REG_27 & merged_key_27 < merged_key_24
+        ? merged_key_27
+        : merged_key_24;
+    merged_REG_28 <= merged_REG_24 | merged_REG_27;
+    merged_key_29 <=
+      ~merged_REG_21 | merged_REG_28 & merged_key_28 < merged_key_21
+        ? merged_key_28
+        : merged_key_21;
+    merged_key_30 <=
+      ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_2 < _trackers_0_io_lo_2
+        ? _trackers_1_io_lo_2
+        : _trackers_0_io_lo_2;
+    merged_REG_30 <= _merged_T_75;
+    merged_key_31 <=
+      ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_2 < _trackers_2_io_lo_2
+        ? _trackers_3_io_lo_2
+        : _trackers_2_io_lo_2;
+    merged_REG_31 <= _merged_T_76;
+    merged_key_32 <=
+      ~merged_REG_30 | merged_REG_31 & merged_key_31 < merged_key_30
+        ? merged_key_31
+        : merged_key_30;
+    merged_REG_32 <= merged_REG_30 | merged_REG_31;
+    merged_key_33 <=
+      ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_2 < _trackers_4_io_lo_2
+        ? _trackers_5_io_lo_2
+        : _trackers_4_io_lo_2;
+    merged_REG_33 <= _merged_T_78;
+    merged_key_34 <=
+      ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_2 < _trackers_6_io_lo_2
+        ? _trackers_7_io_lo_2
+        : _trackers_6_io_lo_2;
+    merged_REG_34 <= _merged_T_79;
+    merged_key_35 <=
+      ~merged_REG_33 | merged_REG_34 & merged_key_34 < merged_key_33
+        ? merged_key_34
+        : merged_key_33;
+    merged_REG_35 <= merged_REG_33 | merged_REG_34;
+    merged_key_36 <=
+      ~merged_REG_32 | merged_REG_35 & merged_key_35 < merged_key_32
+        ? merged_key_35
+        : merged_key_32;
+    merged_REG_36 <= merged_REG_32 | merged_REG_35;
+    merged_key_37 <=
+      ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_2 < _trackers_8_io_lo_2
+        ? _trackers_9_io_lo_2
+        : _trackers_8_io_lo_2;
+    merged_REG_37 <= _merged_T_82;
+    merged_key_38 <=
+      ~_trackers_10_io_any | _trackers_11_io_any
+      & _trackers_11_io_lo_2 < _trackers_10_io_lo_2
+        ? _trackers_11_io_lo_2
+        : _trackers_10_io_lo_2;
+    merged_REG_38 <= _merged_T_83;
+    merged_key_39 <=
+      ~merged_REG_37 | merged_REG_38 & merged_key_38 < merged_key_37
+        ? merged_key_38
+        : merged_key_37;
+    merged_REG_39 <= merged_REG_37 | merged_REG_38;
+    merged_key_40 <=
+      ~_trackers_12_io_any | _trackers_13_io_any
+      & _trackers_13_io_lo_2 < _trackers_12_io_lo_2
+        ? _trackers_13_io_lo_2
+        : _trackers_12_io_lo_2;
+    merged_REG_40 <= _merged_T_85;
+    merged_key_41 <=
+      ~_trackers_14_io_any | _trackers_15_io_any
+      & _trackers_15_io_lo_2 < _trackers_14_io_lo_2
+        ? _trackers_15_io_lo_2
+        : _trackers_14_io_lo_2;
+    merged_REG_41 <= _merged_T_86;
+    merged_key_42 <=
+      ~merged_REG_40 | merged_REG_41 & merged_key_41 < merged_key_40
+        ? merged_key_41
+        : merged_key_40;
+    merged_REG_42 <= merged_REG_40 | merged_REG_41;
+    merged_key_43 <=
+      ~merged_REG_39 | merged_REG_42 & merged_key_42 < merged_key_39
+        ? merged_key_42
+        : merged_key_39;
+    merged_REG_43 <= merged_REG_39 | merged_REG_42;
+    merged_key_44 <=
+      ~merged_REG_36 | merged_REG_43 & merged_key_43 < merged_key_36
+        ? merged_key_43
+        : merged_key_36;
+    merged_key_45 <=
+      ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_0 > _trackers_0_io_hi_0
+        ? _trackers_1_io_hi_0
+        : _trackers_0_io_hi_0;
+    merged_REG_45 <= _merged_T_75;
+    merged_key_46 <=
+      ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_0 > _trackers_2_io_hi_0
+        ? _trackers_3_io_hi_0
+        : _trackers_2_io_hi_0;
+    merged_REG_46 <= _merged_T_76;
+    merged_key_47 <=
+      ~merged_REG_45 | merged_REG_46 & merged_key_46 > merged_key_45
+        ? merged_key_46
+        : merged_key_45;
+    merged_REG_47 <= merged_REG_45 | merged_REG_46;
+    merged_key_48 <=
+      ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_0 > _trackers_4_io_hi_0
+        ? _trackers_5_io_hi_0
+        : _trackers_4_io_hi_0;
+    merged_REG_48 <= _merged_T_78;
+    merged_key_49 <=
+      ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_0 > _trackers_6_io_hi_0
+        ? _trackers_7_io_hi_0
+        : _trackers_6_io_hi_0;
+    merged_REG_49 <= _merged_T_79;
+    merged_key_50 <=
+      ~merged_REG_48 | merged_REG_49 & merged_key_49 > merged_key_48
+        ? merged_key_49
+        : merged_key_48;
+    merged_REG_50 <= merged_REG_48 | merged_REG_49;
+    merged_key_51 <=
+      ~merged_REG_47 | merged_REG_50 & merged_key_50 > merged_key_47
+        ? merged_key_50
+        : merged_key_47;
+    merged_REG_51 <= merged_REG_47 | merged_REG_50;
+    merged_key_52 <=
+      ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_0 > _trackers_8_io_hi_0
+        ? _trackers_9_io_hi_0
+        : _trackers_8_io_hi_0;
+    merged_REG_52 <= _merged_T_82;
+    merged_key_53 <=
+      ~_trackers_10_io_any | _trackers_11_io_any
+      & _trackers_11_io_hi_0 > _trackers_10_io_hi_0
+        ? _trackers_11_io_hi_0
+        : _trackers_10_io_hi_0;
+    merged_REG_53 <= _merged_T_83;
+    merged_key_54 <=
+      ~merged_REG_52 | merged_REG_53 & merged_key_53 > merged_key_52
+        ? merged_key_53
+        : merged_key_52;
+    merged_REG_54 <= merged_REG_52 | merged_REG_53;
+    merged_key_55 <=
+      ~_trackers_12_io_any | _trackers_13_io_any
+      & _trackers_13_io_hi_0 > _trackers_12_io_hi_0
+        ? _trackers_13_io_hi_0
+        : _trackers_12_io_hi_0;
+    merged_REG_55 <= _merged_T_85;
+    merged_key_56 <=
+      ~_trackers_14_io_any | _trackers_15_io_any
+      & _trackers_15_io_hi_0 > _trackers_14_io_hi_0
+        ? _trackers_15_io_hi_0
+        : _trackers_14_io_hi_0;
+    merged_REG_56 <= _merged_T_86;
+    merged_key_57 <=
+      ~merged_REG_55 | merged_REG_56 & merged_key_56 > merged_key_55
+        ? merged_key_56
+        : merged_key_55;
+    merged_REG_57 <= merged_REG_55 | merged_REG_56;
+    merged_key_58 <=
+      ~merged_REG_54 | merged_REG_57 & merged_key_57 > merged_key_54
+        ? merged_key_57
+        : merged_key_54;
+    merged_REG_58 <= merged_REG_54 | merged_REG_57;
+    merged_key_59 <=
+      ~merged_REG_51 | merged_REG_58 & merged_key_58 > merged_key_51
+        ? merged_key_58
+        : merged_key_51;
+    merged_key_60 <=
+      ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_1 > _trackers_0_io_hi_1
+        ? _trackers_1_io_hi_1
+        : _trackers_0_io_hi_1;
+    merged_REG_60 <= _merged_T_75;
+    merged_key_61 <=
+      ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_1 > _trackers_2_io_hi_1
+        ? _trackers_3_io_hi_1
+        : _trackers_2_io_hi_1;
+    merged_REG_61 <= _merged_T_76;
+    merged_key_62 <=
+      ~merged_REG_60 | merged_REG_61 & merged_key_61 > merged_key_60
+        ? merged_key_61
+        : merged_key_60;
+    merged_REG_62 <= merged_REG_60 | merged_REG_61;
+    merged_key_63 <=
+      ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_1 > _trackers_4_io_hi_1
+        ? _trackers_5_io_hi_1
+        : _trackers_4_io_hi_1;
+    merged_REG_63 <= _merged_T_78;
+    merged_key_64 <=
+      ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_1 > _trackers_6_io_hi_1
+        ? _trackers_7_io_hi_1
+        : _trackers_6_io_hi_1;
+    merged_REG_64 <= _merged_T_79;
+    merged_key_65 <=
+      ~merged_REG_63 | merged_REG_64 & merged_key_64 > merged_key_63
+        ? merged_key_64
+        : merged_key_63;
+    merged_REG_65 <= merged_REG_63 | merged_REG_64;
+    merged_key_66 <=
+      ~merged_REG_62 | merged_REG_65 & merged_key_65 > merged_key_62
+        ? merged_key_65
+        : merged_key_62;
+    merged_REG_66 <= merged_REG_62 | merged_REG_65;
+    merged_key_67 <=
+      ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_1 > _trackers_8_io_hi_1
+        ? _trackers_9_io_hi_1
+        : _trackers_8_io_hi_1;
+    merged_REG_67 <= _merged_T_82;
+    merged_key_68 <=
+      ~_trackers_10_io_any | _trackers_11_io_any
+      & _trackers_11_io_hi_1 > _trackers_10_io_hi_1
+        ? _trackers_11_io_hi_1
+        : _trackers_10_io_hi_1;
+    merged_REG_68 <= _merged_T_83;
+    merged_key_69 <=
+      ~merged_REG_67 | merged_REG_68 & merged_key_68 > merged_key_67
+        ? merged_key_68
+        : merged_key_67;
+    merged_REG_69 <= merged_REG_67 | merged_REG_68;
+    merged_key_70 <=
+      ~_trackers_12_io_any | _trackers_13_io_any
+      & _trackers_13_io_hi_1 > _trackers_12_io_hi_1
+        ? _trackers_13_io_hi_1
+        : _trackers_12_io_hi_1;
+    merged_REG_70 <= _merged_T_85;
+    merged_key_71 <=
+      ~_trackers_14_io_any | _trackers_15_io_any
+      & _trackers_15_io_hi_1 > _trackers_14_io_hi_1
+        ? _trackers_15_io_hi_1
+        : _trackers_14_io_hi_1;
+    merged_REG_71 <= _merged_T_86;
+    merged_key_72 <=
+      ~merged_REG_70 | merged_REG_71 & merged_key_71 > merged_key_70
+        ? merged_key_71
+        : merged_key_70;
+    merged_REG_72 <= merged_REG_70 | merged_REG_71;
+    merged_key_73 <=
+      ~merged_REG_69 | merged_REG_72 & merged_key_72 > merged_key_69
+        ? merged_key_72
+        : merged_key_69;
+    merged_REG_73 <= merged_REG_69 | merged_REG_72;
+    merged_key_74 <=
+      ~merged_REG_66 | merged_REG_73 & merged_key_73 > merged_key_66
+        ? merged_key_73
+        : merged_key_66;
+    merged_key_75 <=
+      ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_2 > _trackers_0_io_hi_2
+        ? _trackers_1_io_hi_2
+        : _trackers_0_io_hi_2;
+    merged_REG_75 <= _merged_T_75;
+    merged_key_76 <=
+      ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_2 > _trackers_2_io_hi_2
+        ? _trackers_3_io_hi_2
+        : _trackers_2_io_hi_2;
+    merged_REG_76 <= _merged_T_76;
+    merged_key_77 <=
+      ~merged_REG_75 | merged_REG_76 & merged_key_76 > merged_key_75
+        ? merged_key_76
+        : merged_key_75;
+    merged_REG_77 <= merged_REG_75 | merged_REG_76;
+    merged_key_78 <=
+      ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_2 > _trackers_4_io_hi_2
+        ? _trackers_5_io_hi_2
+        : _trackers_4_io_hi_2;
+    merged_REG_78 <= _merged_T_78;
+    merged_key_79 <=
+      ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_2 > _trackers_6_io_hi_2
+        ? _trackers_7_io_hi_2
+        : _trackers_6_io_hi_2;
+    merged_REG_79 <= _merged_T_79;
+    merged_key_80 <=
+      ~merged_REG_78 | merged_REG_79 & merged_key_79 > merged_key_78
+        ? merged_key_79
+        : merged_key_78;
+    merged_REG_80 <= merged_REG_78 | merged_REG_79;
+    merged_key_81 <=
+      ~merged_REG_77 | merged_REG_80 & merged_key_80 > merged_key_77
+        ? merged_key_80
+        : merged_key_77;
+    merged_REG_81 <= merged_REG_77 | merged_REG_80;
+    merged_key_82 <=
+      ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_2 > _trackers_8_io_hi_2
+        ? _trackers_9_io_hi_2
+        : _trackers_8_io_hi_2;
+    merged_REG_82 <= _merged_T_82;
+    merged_key_83 <=
+      ~_trackers_10_io_any | _trackers_11_io_any
+      & _trackers_11_io_hi_2 > _trackers_10_io_hi_2
+        ? _trackers_11_io_hi_2
+        : _trackers_10_io_hi_2;
+    merged_REG_83 <= _merged_T_83;
+    merged_key_84 <=
+      ~merged_REG_82 | merged_REG_83 & merged_key_83 > merged_key_82
+        ? merged_key_83
+        : merged_key_82;
+    merged_REG_84 <= merged_REG_82 | merged_REG_83;
+    merged_key_85 <=
+      ~_trackers_12_io_any | _trackers_13_io_any
+      & _trackers_13_io_hi_2 > _trackers_12_io_hi_2
+        ? _trackers_13_io_hi_2
+        : _trackers_12_io_hi_2;
+    merged_REG_85 <= _merged_T_85;
+    merged_key_86 <=
+      ~_trackers_14_io_any | _trackers_15_io_any
+      & _trackers_15_io_hi_2 > _trackers_14_io_hi_2
+        ? _trackers_15_io_hi_2
+        : _trackers_14_io_hi_2;
+    merged_REG_86 <= _merged_T_86;
+    merged_key_87 <=
+      ~merged_REG_85 | merged_REG_86 & merged_key_86 > merged_key_85
+        ? merged_key_86
+        : merged_key_85;
+    merged_REG_87 <= merged_REG_85 | merged_REG_86;
+    merged_key_88 <=
+      ~merged_REG_84 | merged_REG_87 & merged_key_87 > merged_key_84
+        ? merged_key_87
+        : merged_key_84;
+    merged_REG_88 <= merged_REG_84 | merged_REG_87;
+    merged_key_89 <=
+      ~merged_REG_81 | merged_REG_88 & merged_key_88 > merged_key_81
+        ? merged_key_88
+        : merged_key_81;
     anyBox <=
-      _merged_T_450 | _trackers_2_io_any | _trackers_3_io_any | _trackers_4_io_any
+      _merged_T_75 | _trackers_2_io_any | _trackers_3_io_any | _trackers_4_io_any
       | _trackers_5_io_any | _trackers_6_io_any | _trackers_7_io_any | _trackers_8_io_any
       | _trackers_9_io_any | _trackers_10_io_any | _trackers_11_io_any
       | _trackers_12_io_any | _trackers_13_io_any | _trackers_14_io_any
       | _trackers_15_io_any;
-    lo_0 <=
-      ~(_merged_T_12 | _merged_T_30) | (_merged_T_54 | _merged_T_72)
-      & _merged_T_83 < _merged_T_41
-        ? _merged_T_83
-        : _merged_T_41;
-    lo_1 <=
-      ~(_merged_T_102 | _merged_T_120) | (_merged_T_144 | _merged_T_162)
-      & _merged_T_173 < _merged_T_131
-        ? _merged_T_173
-        : _merged_T_131;
-    lo_2 <=
-      ~(_merged_T_192 | _merged_T_210) | (_merged_T_234 | _merged_T_252)
-      & _merged_T_263 < _merged_T_221
-        ? _merged_T_263
-        : _merged_T_221;
-    hi_0 <=
-      ~(_merged_T_282 | _merged_T_300) | (_merged_T_324 | _merged_T_342)
-      & _merged_T_353 > _merged_T_311
-        ? _merged_T_353
-        : _merged_T_311;
-    hi_1 <=
-      ~(_merged_T_372 | _merged_T_390) | (_merged_T_414 | _merged_T_432)
-      & _merged_T_443 > _merged_T_401
-        ? _merged_T_443
-        : _merged_T_401;
-    hi_2 <=
-      ~(_merged_T_462 | _merged_T_480) | (_merged_T_504 | _merged_T_522)
-      & _merged_T_533 > _merged_T_491
-        ? _merged_T_533
-        : _merged_T_491;
-    if (_GEN_5 & _GEN_31)
+    lo_0 <= merged_key_14;
+    lo_1 <= merged_key_29;
+    lo_2 <= merged_key_44;
+    hi_0 <= merged_key_59;
+    hi_1 <= merged_key_74;
+    hi_2 <= merged_key_89;
+    if (_GEN_5 & _GEN_32)
       places <=
         {15'h0, placesXY} * {31'h0, {1'h0, sat_2} + 16'h2} + {32'h0, sat_0} + 47'h2;
     if (~_GEN_10) begin
       if (_GEN_8) begin
-        if (_GEN_56)
+        if (_GEN_57)
           m <= 9'h0;
       end
       else if (_GEN_9)
@@ -102699,13 +104684,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     entryGroup_13 <= _gens_13_io_entry_group;
     entryGroup_14 <= _gens_14_io_entry_group;
     entryGroup_15 <= _gens_15_io_entry_group;
-    if (_GEN_54) begin
+    if (_GEN_55) begin
       next <= 16'h0;
       dCount <= 7'h0;
       dNext <= 10'h0;
     end
     else begin
-      next <= taken > _GEN_53 ? _GEN_6 : taken[15:0];
+      next <= taken > _GEN_54 ? _GEN_6 : taken[15:0];
       if (|_GEN)
         dCount <= dCount + 7'h1;
       if (|toSingle)
@@ -102805,7 +104790,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       st_badBucket <= 1'h0;
       st_sortMismatch <= 1'h0;
       largeCount <= 5'h0;
-      inflight <= 6'h0;
+      inflight <= 8'h0;
       laneKeys_0_io_in_valid_REG <= 1'h0;
       laneKeys_1_io_in_valid_REG <= 1'h0;
       laneKeys_2_io_in_valid_REG <= 1'h0;
@@ -102822,8 +104807,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       laneKeys_13_io_in_valid_REG <= 1'h0;
       laneKeys_14_io_in_valid_REG <= 1'h0;
       laneKeys_15_io_in_valid_REG <= 1'h0;
-      feedInflight <= 4'h0;
-      boxCycle <= 2'h0;
+      feedInflight <= 6'h0;
+      boxCycle <= 5'h0;
       held_0 <= 1'h0;
       held_1 <= 1'h0;
       held_2 <= 1'h0;
@@ -102865,36 +104850,40 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
             state <= 4'h2;
         end
         else if (_GEN_8) begin
-          if (_GEN_56)
+          if (_GEN_57)
             state <= 4'h3;
         end
         else if (_GEN_9) begin
-          if (_m_T >= mergeEnd)
+          if (_GEN_58)
             state <= 4'h4;
         end
-        else if (_GEN_5) begin
-          if (&boxCycle)
+        else if (_GEN_11) begin
+          if (settle == 2'h1)
             state <= 4'h5;
         end
-        else if (_GEN_11) begin
-          if (passDone)
+        else if (_GEN_5) begin
+          if (boxDone)
             state <= 4'h6;
         end
         else if (_GEN_12) begin
-          if (_GEN_57)
+          if (passDone)
             state <= 4'h7;
         end
         else if (_GEN_13) begin
-          if (_GEN_58)
+          if (_GEN_59)
             state <= 4'h8;
         end
-        else if (_GEN_16)
+        else if (_GEN_14) begin
+          if (_GEN_60)
+            state <= 4'h9;
+        end
+        else if (_GEN_17)
           state <= {3'h0, pending};
-        fed <= ~_GEN_61 & _GEN_59 | fed;
-        st_tooMany <= ~_GEN_25 & st_tooMany;
-        st_cellOverflow <= ~_GEN_25 & _GEN_26;
-        st_largeOverflow <= ~_GEN_25 & _GEN_63;
-        if (_GEN_62) begin
+        fed <= ~_GEN_63 & _GEN_61 | fed;
+        st_tooMany <= ~_GEN_26 & st_tooMany;
+        st_cellOverflow <= ~_GEN_26 & _GEN_27;
+        st_largeOverflow <= ~_GEN_26 & _GEN_65;
+        if (_GEN_64) begin
           if (classifying)
             largeCount <= largeKept[4:0];
         end
@@ -102910,41 +104899,41 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         else if (begin_0)
           state <= 4'h1;
         fed <= ~io_start & (begin_0 | fed);
-        st_cellOverflow <= ~io_start & _GEN_26;
-        st_largeOverflow <= ~io_start & _GEN_63;
-        if (_GEN_55)
+        st_cellOverflow <= ~io_start & _GEN_27;
+        st_largeOverflow <= ~io_start & _GEN_65;
+        if (_GEN_56)
           largeCount <= 5'h0;
         else if (classifying)
           largeCount <= largeKept[4:0];
       end
-      pending <= (~(|state) | _GEN_61 | ~_GEN_59) & (beginAhead | pending);
+      pending <= (~(|state) | _GEN_63 | ~_GEN_61) & (beginAhead | pending);
       if ((|state) | io_start)
-        feedOn <= beginAhead | _GEN_27;
+        feedOn <= beginAhead | _GEN_28;
       else
-        feedOn <= begin_0 | beginAhead | _GEN_27;
-      if (_GEN_28) begin
+        feedOn <= begin_0 | beginAhead | _GEN_28;
+      if (_GEN_29) begin
         if (io_start)
           st_level <= 14'h0;
       end
-      else if (_GEN_64) begin
+      else if (_GEN_66) begin
       end
       else
         st_level <= _cellExp_io_level;
-      if (_GEN_28 & io_start) begin
+      if (_GEN_29 & io_start) begin
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
       end
       else begin
         if (classifying)
-          st_large <= st_large + {7'h0, largeKept - _GEN_34};
+          st_large <= st_large + {7'h0, largeKept - _GEN_35};
         if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
-      if (_GEN_28) begin
+      if (_GEN_29) begin
         st_badBucket <= ~io_start & st_badBucket;
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
-      else if (_GEN_64) begin
+      else if (_GEN_66) begin
       end
       else begin
         st_badBucket <=
@@ -102958,7 +104947,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       end
       inflight <=
         inflight
-        + {1'h0,
+        + {3'h0,
            {1'h0,
             {1'h0,
              {1'h0, {1'h0, reading_0} + {1'h0, reading_1}}
@@ -102973,7 +104962,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                   + {1'h0,
                      {1'h0, {1'h0, reading_12} + {1'h0, reading_13}}
                        + {1'h0, {1'h0, reading_14} + {1'h0, reading_15}}}}}
-        - {1'h0,
+        - {3'h0,
            {1'h0,
             {1'h0,
              {1'h0, {1'h0, _laneKeys_0_io_out_valid} + {1'h0, _laneKeys_1_io_out_valid}}
@@ -103017,54 +105006,54 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       laneKeys_15_io_in_valid_REG <= reading_15;
       feedInflight <=
         feedInflight
-        + {1'h0,
+        + {3'h0,
            {1'h0, {1'h0, fedIn_0} + {1'h0, fedIn_1}}
              + {1'h0, {1'h0, fedIn_2} + {1'h0, fedIn_3}}}
-        - {1'h0,
+        - {3'h0,
            {1'h0, {1'h0, _feedKeys_0_io_out_valid} + {1'h0, _feedKeys_1_io_out_valid}}
              + {1'h0,
                 {1'h0, _feedKeys_2_io_out_valid} + {1'h0, _feedKeys_3_io_out_valid}}};
-      if (~_GEN_5 | (&boxCycle))
-        boxCycle <= 2'h0;
+      if (~_GEN_5 | boxDone)
+        boxCycle <= 5'h0;
       else
-        boxCycle <= boxCycle + 2'h1;
+        boxCycle <= boxCycle + 5'h1;
       held_0 <=
-        ~_GEN_54 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
+        ~_GEN_55 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
       held_1 <=
-        ~_GEN_54 & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
+        ~_GEN_55 & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
       held_2 <=
-        ~_GEN_54 & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
+        ~_GEN_55 & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
       held_3 <=
-        ~_GEN_54 & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
+        ~_GEN_55 & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
       held_4 <=
-        ~_GEN_54 & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
+        ~_GEN_55 & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
       held_5 <=
-        ~_GEN_54 & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
+        ~_GEN_55 & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
       held_6 <=
-        ~_GEN_54 & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
+        ~_GEN_55 & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
       held_7 <=
-        ~_GEN_54 & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
+        ~_GEN_55 & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
       held_8 <=
-        ~_GEN_54 & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
+        ~_GEN_55 & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
       held_9 <=
-        ~_GEN_54 & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
+        ~_GEN_55 & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
       held_10 <=
-        ~_GEN_54
+        ~_GEN_55
         & (_taken_T_10 ? _heldUnit_10_T : toSingle[10] | ~_gens_10_io_take & held_10);
       held_11 <=
-        ~_GEN_54
+        ~_GEN_55
         & (_taken_T_11 ? _heldUnit_11_T : toSingle[11] | ~_gens_11_io_take & held_11);
       held_12 <=
-        ~_GEN_54
+        ~_GEN_55
         & (_taken_T_12 ? _heldUnit_12_T : toSingle[12] | ~_gens_12_io_take & held_12);
       held_13 <=
-        ~_GEN_54
+        ~_GEN_55
         & (_taken_T_13 ? _heldUnit_13_T : toSingle[13] | ~_gens_13_io_take & held_13);
       held_14 <=
-        ~_GEN_54
+        ~_GEN_55
         & (_taken_T_14 ? _heldUnit_14_T : toSingle[14] | ~_gens_14_io_take & held_14);
       held_15 <=
-        ~_GEN_54
+        ~_GEN_55
         & (_taken_T_15 ? _heldUnit_15_T : toSingle[15] | ~_gens_15_io_take & held_15);
       if (_taken_T)
         heldUnit_0 <= _heldUnit_0_T;
@@ -103714,7 +105703,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_0_io_out_cell_1[0],
         _laneKeys_0_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_0_bits_item    (r),
+    .io_in_0_bits_item    (r_9),
     .io_in_1_ready        (_sorts_0_io_in_1_ready),
     .io_in_1_valid        (_sorts_0_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
@@ -103726,7 +105715,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_1_io_out_cell_1[0],
         _laneKeys_1_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_1_bits_item    (r_1),
+    .io_in_1_bits_item    (r_19),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_0_io_lookup_0_begin),
     .io_lookup_0_end      (_sorts_0_io_lookup_0_end),
@@ -104406,7 +106395,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_2_io_out_cell_1[0],
         _laneKeys_2_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_0_bits_item    (r_2),
+    .io_in_0_bits_item    (r_29),
     .io_in_1_ready        (_sorts_1_io_in_1_ready),
     .io_in_1_valid        (_sorts_1_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
@@ -104418,7 +106407,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_3_io_out_cell_1[0],
         _laneKeys_3_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_1_bits_item    (r_3),
+    .io_in_1_bits_item    (r_39),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_1_io_lookup_0_begin),
     .io_lookup_0_end      (_sorts_1_io_lookup_0_end),
@@ -105098,7 +107087,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_4_io_out_cell_1[0],
         _laneKeys_4_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_0_bits_item    (r_4),
+    .io_in_0_bits_item    (r_49),
     .io_in_1_ready        (_sorts_2_io_in_1_ready),
     .io_in_1_valid        (_sorts_2_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
@@ -105110,7 +107099,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_5_io_out_cell_1[0],
         _laneKeys_5_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_1_bits_item    (r_5),
+    .io_in_1_bits_item    (r_59),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_2_io_lookup_0_begin),
     .io_lookup_0_end      (_sorts_2_io_lookup_0_end),
@@ -105790,7 +107779,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_6_io_out_cell_1[0],
         _laneKeys_6_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_0_bits_item    (r_6),
+    .io_in_0_bits_item    (r_69),
     .io_in_1_ready        (_sorts_3_io_in_1_ready),
     .io_in_1_valid        (_sorts_3_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
@@ -105802,7 +107791,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         _laneKeys_7_io_out_cell_1[0],
         _laneKeys_7_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
-    .io_in_1_bits_item    (r_7),
+    .io_in_1_bits_item    (r_79),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_3_io_lookup_0_begin),
     .io_lookup_0_end      (_sorts_3_io_lookup_0_end),
@@ -106463,7 +108452,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_scattered         (_sorts_3_io_scattered),
     .io_badBucket         (_sorts_3_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_0 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -106732,7 +108721,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_0_bits_j),
     .io_busy              (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_1 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -107001,7 +108990,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_1_bits_j),
     .io_busy              (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_2 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -107270,7 +109259,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_2_bits_j),
     .io_busy              (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_3 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -107539,7 +109528,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_3_bits_j),
     .io_busy              (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_4 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -107808,7 +109797,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_4_bits_j),
     .io_busy              (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_5 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -108077,7 +110066,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_5_bits_j),
     .io_busy              (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_6 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -108346,7 +110335,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_6_bits_j),
     .io_busy              (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_7 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -108615,7 +110604,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_7_bits_j),
     .io_busy              (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_8 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -108884,7 +110873,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_8_bits_j),
     .io_busy              (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_9 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -109153,7 +111142,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_9_bits_j),
     .io_busy              (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_10 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -109422,7 +111411,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_10_bits_j),
     .io_busy              (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_11 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -109691,7 +111680,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_11_bits_j),
     .io_busy              (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_12 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -109960,7 +111949,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_12_bits_j),
     .io_busy              (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_13 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -110229,7 +112218,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_13_bits_j),
     .io_busy              (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_14 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -110498,7 +112487,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_14_bits_j),
     .io_busy              (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_15 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -110767,7 +112756,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_15_bits_j),
     .io_busy              (_gens_15_io_busy)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_0 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_0 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_0_io_in_valid_REG),
@@ -110791,7 +112780,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_0_io_out_top),
     .io_out_topNone      (_laneKeys_0_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_1 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_1 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_1_io_in_valid_REG),
@@ -110815,7 +112804,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_1_io_out_top),
     .io_out_topNone      (_laneKeys_1_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_2 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_2_io_in_valid_REG),
@@ -110839,7 +112828,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_2_io_out_top),
     .io_out_topNone      (_laneKeys_2_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_3 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_3 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_3_io_in_valid_REG),
@@ -110863,7 +112852,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_3_io_out_top),
     .io_out_topNone      (_laneKeys_3_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_4 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_4 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_4_io_in_valid_REG),
@@ -110887,7 +112876,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_4_io_out_top),
     .io_out_topNone      (_laneKeys_4_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_5 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_5 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_5_io_in_valid_REG),
@@ -110911,7 +112900,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_5_io_out_top),
     .io_out_topNone      (_laneKeys_5_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_6 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_6 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_6_io_in_valid_REG),
@@ -110935,7 +112924,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_6_io_out_top),
     .io_out_topNone      (_laneKeys_6_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_7 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_7 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_7_io_in_valid_REG),
@@ -110959,7 +112948,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_7_io_out_top),
     .io_out_topNone      (_laneKeys_7_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_8 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_8 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_8_io_in_valid_REG),
@@ -110983,7 +112972,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_8_io_out_top),
     .io_out_topNone      (_laneKeys_8_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_9 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_9 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_9_io_in_valid_REG),
@@ -111007,7 +112996,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_9_io_out_top),
     .io_out_topNone      (_laneKeys_9_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_10 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_10 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_10_io_in_valid_REG),
@@ -111031,7 +113020,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_10_io_out_top),
     .io_out_topNone      (_laneKeys_10_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_11 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_11 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_11_io_in_valid_REG),
@@ -111055,7 +113044,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_11_io_out_top),
     .io_out_topNone      (_laneKeys_11_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_12 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_12 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_12_io_in_valid_REG),
@@ -111079,7 +113068,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_12_io_out_top),
     .io_out_topNone      (_laneKeys_12_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_13 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_13 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_13_io_in_valid_REG),
@@ -111103,7 +113092,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_13_io_out_top),
     .io_out_topNone      (_laneKeys_13_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_14 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_14 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_14_io_in_valid_REG),
@@ -111127,7 +113116,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_14_io_out_top),
     .io_out_topNone      (_laneKeys_14_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_15 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world laneKeys_15 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_15_io_in_valid_REG),
@@ -111151,7 +113140,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_15_io_out_top),
     .io_out_topNone      (_laneKeys_15_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_0 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world feedKeys_0 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (fedIn_0),
@@ -111175,7 +113164,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_feedKeys_0_io_out_top),
     .io_out_topNone      (_feedKeys_0_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_1 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world feedKeys_1 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (fedIn_1),
@@ -111199,7 +113188,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_feedKeys_1_io_out_top),
     .io_out_topNone      (_feedKeys_1_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_2 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world feedKeys_2 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (fedIn_2),
@@ -111223,7 +113212,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_feedKeys_2_io_out_top),
     .io_out_topNone      (_feedKeys_2_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_3 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world feedKeys_3 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (fedIn_3),
@@ -111519,7 +113508,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_hi_1      (_trackers_15_io_hi_1),
     .io_hi_2      (_trackers_15_io_hi_2)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world corners_k (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world corners_k (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h1),
@@ -111543,7 +113532,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (/* unused */),
     .io_out_topNone      (/* unused */)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world corners_k_1 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l10_world corners_k_1 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h1),
@@ -114507,7 +116496,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_y10_t4_bx_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_begin                (loadStart & run_8[1] | prefetchGo),

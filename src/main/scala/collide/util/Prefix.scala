@@ -15,6 +15,22 @@ object Prefix {
       pl ++ apply(r)(op).map(op(pl.last, _))
     }
 
+  /** Inclusive prefix combinations as Kogge and Stone lay them out: log2(n) levels, each
+    * level's results passed through `between` (a register, so a pipeline does one level a
+    * cycle) before the next level reads them. */
+  def levels[T](xs: Seq[T], between: Seq[T] => Seq[T])(op: (T, T) => T): Seq[T] = {
+    var cur = xs
+    var d = 1
+    while (d < xs.length) {
+      val prev = cur
+      cur = between(prev.indices.map(i => if (i >= d) op(prev(i - d), prev(i)) else prev(i)))
+      d *= 2
+    }
+    cur
+  }
+  /** Levels of [[levels]] for n values: ceil(log2 n). */
+  def levelCount(n: Int): Int = { var d = 1; var l = 0; while (d < n) { d *= 2; l += 1 }; l }
+
   /** The depth in `op`s of apply's result for n values: ceil(log2 n). */
   def depth(n: Int): Int = if (n <= 1) 0 else 1 + depth(n - n / 2)
 }

@@ -48,15 +48,21 @@ object BoxTracker {
     Mux(key(w - 1), key ^ (BigInt(1) << (w - 1)).U, ~key)
   }
   /** The least and greatest of several trackers' keys (those that saw a sphere), in a tree of
-    * log2(trackers) compares (16 lanes' in a chain were the broad phase's slowest path). */
+    * log2(trackers) compares with a register after each (one compare a cycle: 16 lanes' tree
+    * of four was the broad phase's slowest path). The result is right [[mergeLatency]] cycles
+    * after the trackers last change. */
   def merge(ts: Seq[BoxTracker]): (Bool, Vec[UInt], Vec[UInt]) = {
     val any = ts.map(_.io.any).reduce(_ || _)
     def pick(f: BoxTracker => UInt, better: (UInt, UInt) => Bool): UInt =
       Tree.reduce(ts.map(t => (t.io.any, f(t)))) { (a, b) =>
-        (a._1 || b._1, Mux(!a._1 || (b._1 && better(b._2, a._2)), b._2, a._2))
+        val key = Reg(UInt(a._2.getWidth.W)) // (RegNext would leave the width to inference)
+        key := Mux(!a._1 || (b._1 && better(b._2, a._2)), b._2, a._2)
+        (RegNext(a._1 || b._1), key)
       }._2
     (any, VecInit.tabulate(3)(a => pick(_.io.lo(a), _ < _)), VecInit.tabulate(3)(a => pick(_.io.hi(a), _ > _)))
   }
+  /** Cycles [[merge]] takes to settle: its tree's depth. */
+  def mergeLatency(trackers: Int): Int = log2Ceil(trackers)
   /** ceil(log2(x)), 0 for x <= 1: BroadPhase's bucket count for a table. */
   def bitsFor(extent: UInt): UInt = Mux(extent <= 1.U, 0.U, Log2(extent - 1.U) +& 1.U)
 }

@@ -84,7 +84,11 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, feedWidth
   val status = Output(new BroadPhaseStatus(SphereKeys.kWidth(p), countW))
 }
 
-class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency: Int = 1, feedWidth: Int = 0) extends Module {
+/** keysLatency: SphereKeys' registers; by default those its segments need at 200 MHz
+  * (SphereKeys.latencyFor). */
+class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatencyOpt: Option[Int] = None, feedWidth: Int = 0) extends Module {
+  val keysLatency: Int = keysLatencyOpt.getOrElse(SphereKeys.latencyFor(p, bp, 200))
+  require(keysLatency >= 1, s"keysLatency must be at least 1 (the key records come a cycle after the table), got $keysLatency")
   require(maxSpheres >= 2 && maxSpheres <= (1 << 24), s"maxSpheres must be 2..2^24, got $maxSpheres")
   // The fed spheres go through lanes 0 .. feedWidth-1's SphereKeys and CellExponents.
   require(feedWidth >= 0 && feedWidth <= bp.lanes,
@@ -97,7 +101,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
       (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "") +
       (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "") + (if (bp.coarseChunks) "_x" else "") +
-      (if (feedWidth > 0) s"_t$feedWidth" else "") + (if (bp.boxBuckets) "_bx" else "") + (if (bp.clearBehind) "_cb" else "") +
+      s"_y$keysLatency" + (if (feedWidth > 0) s"_t$feedWidth" else "") + (if (bp.boxBuckets) "_bx" else "") + (if (bp.clearBehind) "_cb" else "") +
       (if (!bp.nearFilter) "_wf" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres, feedWidth))
   private val itemW = io.itemW
@@ -136,8 +140,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val feedKeys = Seq.fill(feedWidth)(Module(new SphereKeys(p, bp, keysLatency)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
-  private object S extends ChiselEnum { val idle, fill, load, merge, box, classify, prefix, scatter, generate = Value }
+  private object S extends ChiselEnum { val idle, fill, load, merge, settle, box, classify, prefix, scatter, generate = Value }
   private val state = RegInit(S.idle)
+  private val settle = Reg(UInt(log2Ceil(CellExponent.levelLatency + 1).W))
   io.busy := state =/= S.idle && state =/= S.fill
   /** A begin taken while the current world works (the run queue): its table is fed into the
     * lane CellExponents and BoxTrackers, which the current world no longer needs once past its
@@ -244,7 +249,10 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   /** The box's map, set in state box (after the level) and used by every bucket after it. */
   private val boxMap = Reg(new BoxMapBits(unitBits, tableLog2))
   private val boxExtent = RegInit(VecInit(Seq.fill(3)(0.U(BoxMapBits.extentW.W))))
-  private val boxCycle = RegInit(0.U(2.W))
+  /** The corners' keys come keysLatency cycles into state box, after the trackers' merge has
+    * settled; the map takes three more. */
+  private val boxFirst = BoxTracker.mergeLatency(bp.lanes) + keysLatency
+  private val boxCycle = RegInit(0.U(log2Ceil(boxFirst + 3).W))
   /** The box's map is final: classify may start. */
   private val boxDone = WireDefault(true.B)
   /** Buckets in use: 2^usedLog2. */
@@ -264,14 +272,15 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     // Registered: the trackers are final at least two cycles before state box (the load pass
     // ends once its last sphere is out of SphereKeys, a cycle after its tracker took it), and the
-    // merge then feeds the corners' SphereKeys from a register, not through its compares.
+    // merge (settled in BoxTracker.mergeLatency cycles, counted in boxFirst) then feeds the
+    // corners' SphereKeys from a register, not through its compares.
     val merged = BoxTracker.merge(trackers)
     val anyBox = RegNext(merged._1)
     val lo = RegNext(merged._2)
     val hi = RegNext(merged._3)
-    // The units of the least and greatest corner at the level, a cycle after state box begins.
+    // The units of the least and greatest corner at the level, keysLatency cycles into state box.
     val corners = Seq(lo, hi).map { keys =>
-      val k = Module(new SphereKeys(p, bp, 1))
+      val k = Module(new SphereKeys(p, bp, keysLatency))
       k.io.in.valid := true.B
       k.io.in.sphere := VecInit(keys.map(BoxTracker.bits) :+ 0.U(p.width.W))
       k.io.in.level := level
@@ -287,10 +296,10 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val groupLog2 = if (bp.coarseChunks) 3 else 0
     val hashBits = if (bp.coarseChunks) Mux(usedLog2 > 3.U, usedLog2 - 3.U, 0.U) else usedLog2
     val perWord = 1 << wordLog2
-    boxDone := boxCycle === 3.U
+    boxDone := boxCycle === (boxFirst + 2).U
     when(state === S.box) {
       boxCycle := boxCycle + 1.U
-      when(boxCycle === 1.U) {
+      when(boxCycle === boxFirst.U) {
         for (a <- 0 until 3) boxMap.origin(a) := corners(0)(a) - 1.S
         boxMap.rx := (extent(0) + 1.U)(tableLog2 - 1, 0)
         boxMap.rxy := (extent(1) + 1.U)(tableLog2 - 1, 0) // times rx next cycle
@@ -304,11 +313,11 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
         // chained were the broad phase's own slowest path, docs/afu.md "Timing").
         placesXY := (satNow(0) +& 1.U) * (satNow(1) +& 1.U)
       }
-      when(boxCycle === 2.U) {
+      when(boxCycle === (boxFirst + 1).U) {
         boxMap.rxy := (boxMap.rxy * boxMap.rx)(tableLog2 - 1, 0)
         places := placesXY * (sat(2) +& 2.U) + sat(0) + 2.U
       }
-      when(boxCycle === 3.U) {
+      when(boxCycle === (boxFirst + 2).U) {
         // The places' buckets rounded up to a word, where they fit the buckets in use.
         val fits = anyBox && places <= (1.U((tableLog2 + 1).W) << hashBits)
         val words = ((places << groupLog2) + (perWord - 1).U) >> wordLog2
@@ -532,13 +541,19 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       st.cycLoad := st.cycLoad + 1.U
       advance()
       when(passDone && feedInflight === 0.U && !sortBusy) {
-        if (wideLoad) { state := S.merge; m := 0.U } else if (bp.boxBuckets) state := S.box else { state := S.classify; restart() }
+        if (wideLoad) { state := S.merge; m := 0.U } else { state := S.settle; settle := 0.U }
       }
     }
     is(S.merge) {
       st.cycLoad := st.cycLoad + 1.U
       m := m + 2.U
-      when(m + 2.U >= mergeEnd) { // the last values land this cycle
+      when(m + 2.U >= mergeEnd) { state := S.settle; settle := 0.U } // the last values land this cycle
+    }
+    is(S.settle) {
+      // The level's own registers (CellExponent.levelLatency) take in the last needs.
+      st.cycLoad := st.cycLoad + 1.U
+      settle := settle + 1.U
+      when(settle === (CellExponent.levelLatency - 1).U) {
         if (bp.boxBuckets) state := S.box else { state := S.classify; restart() }
       }
     }

@@ -2,6 +2,7 @@ package collide.world
 
 import chisel3._
 import chisel3.util._
+import collide.fp.Pipeline
 import collide.util.Prefix
 
 /** The broad phase's counting sort of sphere indices by bucket, in on-chip RAM
@@ -139,21 +140,32 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   private val walkW = if (wordsLog2 == 0) 0.U else walk(wordsLog2 - 1, 0)
 
   // --- clear and prefix: one word a cycle --------------------------------------------------
+  // The prefix sum is a pipeline, a word a cycle: read the ports' counters; their totals and
+  // each port's offset (the counts of the ports before it); the totals' prefix within the word,
+  // a level of adders a cycle; each cursor's offset within the word; then, in one adder each,
+  // the running sum added (the only recurrence: sum += the word's total).
   private val sum = Reg(UInt(countW.W))
   private val sumRead = state === S.summing && walk < sumWords
   private val sumRd = cursors.map(t => lanes(t.read(walkW, sumRead)))
-  private val sumS1 = RegNext(sumRead, false.B)
-  private val sumW = RegNext(walkW)
-  private val sumLast = RegNext(walk + 1.U === sumWords)
-  // Per bucket of the word: every port's count, their total, and the exclusive prefix of the
-  // totals on top of the running sum (the bucket's start).
-  private val totals = VecInit.tabulate(perWord)(j => sumRd.map(_(j)).reduce(_ + _))
-  // sum, then sum plus each prefix of the totals, in log2 levels of adders (Prefix): bucket j
-  // starts at inc(j) and ends at inc(j + 1); inc(perWord) is the next word's sum.
-  private val inc = Prefix(sum +: totals)(_ + _)
-  private val starts = VecInit(inc.take(perWord))
-  /** Port p's cursor for bucket j: its start plus the counts of the ports before p. */
-  private def portStart(p: Int, j: Int): UInt = sumRd.take(p).map(_(j)).foldLeft(starts(j))(_ + _)
+  /** Cycles from the counters' read data to the cycle their word is written. */
+  private val sumStages = BucketSort.prefixStages(perWord)
+  private def sumPipe[T <: Data](x: T, n: Int): T = Pipeline(x, n, true.B)
+  private val sumApply = sumPipe(RegNext(sumRead, false.B), sumStages)
+  private val sumW = sumPipe(RegNext(walkW), sumStages)
+  private val sumLast = sumPipe(RegNext(walk + 1.U === sumWords), sumStages)
+  // Per bucket of the word: every port's count and their total (registered).
+  private val totals = RegNext(VecInit.tabulate(perWord)(j => sumRd.map(_(j)).reduce(_ + _)))
+  private val portOffsets = (0 until ports).map(p => RegNext(VecInit.tabulate(perWord)(j =>
+    sumRd.take(p).map(_(j)).foldLeft(0.U(countW.W))(_ + _))))
+  // The totals' inclusive prefix within the word, a level a cycle.
+  private val incl = VecInit(Prefix.levels[UInt](totals, v => v.map(x => RegNext(x)))(_ + _))
+  private val inclAt = Prefix.levelCount(perWord)
+  // Bucket j's start within the word (the prefix before it), plus port p's offset, a cycle on.
+  private val offsetsP = portOffsets.map(o => sumPipe(o, inclAt))
+  private val preStarts = offsetsP.map(o => RegNext(VecInit.tabulate(perWord)(j => if (j == 0) o(j) else incl(j - 1) + o(j))))
+  private val preEnds = RegNext(incl)
+  /** Port p's cursor for bucket j: the running sum plus its start within the word. */
+  private def portStart(p: Int, j: Int): UInt = sum + preStarts(p)(j)
   private class Place extends Bundle { val pos = UInt(posW.W); val item = UInt(itemW.W) }
   /** Each port's scatter placement this cycle (the read-modify-write's second stage). */
   private val place = Wire(Vec(ports, Valid(new Place)))
@@ -184,13 +196,13 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     when(walk + 1.U === (if (clearBehind) clearTo else usedWords)) { state := S.idle; clean := true.B }
   }
   when(state === S.summing && walk < sumWords) { walk := walk + 1.U }
-  when(sumS1) {
-    sum := inc.last
+  when(sumApply) {
+    sum := sum + preEnds.last
     when(sumLast) { state := S.idle }
   }
   // Copies 1 and up hold the ends from the prefix sum on; nothing else writes them.
-  private val ends = flat(inc.tail)
-  for (t <- if (clearBehind) tables else tables.tail) when(sumS1) { t.write(sumW, ends) }
+  private val ends = flat(preEnds.map(sum + _))
+  for (t <- if (clearBehind) tables else tables.tail) when(sumApply) { t.write(sumW, ends) }
 
   // --- count / scatter: a two-stage read-modify-write of one counter per port --------------
   io.in.foreach(_.ready := state === S.idle && !io.clear && !io.prefix)
@@ -221,7 +233,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     val writeW = WireDefault(wordOf(s1b))
     val writeV = WireDefault(newWord)
     when(state === S.clearing) { write := true.B; writeW := walkW; writeV := 0.U }
-    when(sumS1) { write := true.B; writeW := sumW; writeV := flat((0 until perWord).map(j => portStart(p, j))) }
+    when(sumApply) { write := true.B; writeW := sumW; writeV := flat((0 until perWord).map(j => portStart(p, j))) }
     when(write) { t.write(writeW, writeV) }
   }
 
@@ -253,6 +265,10 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
 }
 
 object BucketSort {
+  /** The prefix sum's pipeline, from a word's counters read to its cursors written: the ports'
+    * totals, a level of the word's prefix a cycle, the offsets within the word. */
+  def prefixStages(perWord: Int): Int = 2 + Prefix.levelCount(perWord)
+
   /** The spans of 2^log2 buckets (counter words, claimed units) that `buckets` fill, at least
     * one: a table smaller than a span still has one. */
   def spans(buckets: UInt, log2: Int): UInt = {

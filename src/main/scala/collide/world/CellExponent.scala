@@ -26,7 +26,8 @@ class CellExponentIO(p: FpParams, ports: Int, slots: Int) extends Bundle {
   /** Starts a new world: forget every sphere. */
   val clear = Input(Bool())
   val in = Input(Vec(ports, new CellExponentIn(kWidth)))
-  /** The cell level for the spheres seen so far (valid the cycle after the last one). */
+  /** The cell level for the spheres seen so far (valid 1 + CellExponent.levelLatency cycles
+    * after the last one). */
   val level = Output(SInt(kWidth.W))
   /** What it keeps, for merging several of these into one (BroadPhase's load pass with lanes):
     * the kept needs, largest first, the first `used` of them filled; the largest top, if any. */
@@ -83,6 +84,20 @@ class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Mo
   private val levelSmall = Mux(used === slots.U, kept(slots - 1), kept(0))
   private val levelCoord = Mux(anyTop, (topMax << 1) -& bp.levelCoordOffset.S, minK)
   private val levelFloor = bp.levelFloor(p).S(w.W)
-  io.level := maxS(maxS(levelSmall, levelCoord), levelFloor).asTypeOf(SInt(w.W))
+  // Two registered steps (CellExponent.levelLatency), a compare each: the kept need against the
+  // floor beside the coordinates' bound, then the greater of the two.
+  private val levelA = Reg(SInt(w.W))
+  private val levelB = Reg(SInt(levelCoord.getWidth.W))
+  private val levelR = Reg(SInt(w.W))
+  levelA := maxS(levelSmall, levelFloor)
+  levelB := levelCoord
+  levelR := maxS(levelA, levelB).asTypeOf(SInt(w.W))
+  io.level := levelR
   io.kept := kept; io.used := used; io.top := topMax; io.anyTop := anyTop
+}
+
+object CellExponent {
+  /** Registers between the kept needs and the level: the level counts a sphere
+    * 1 + levelLatency cycles after it came. */
+  val levelLatency: Int = 2
 }

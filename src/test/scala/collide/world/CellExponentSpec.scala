@@ -61,6 +61,7 @@ class CellExponentSpec extends AnyFlatSpec with ChiselScalatestTester {
             dut.clock.step()
           }
           idle()
+          dut.clock.step(CellExponent.levelLatency)
           val eligible = w.filterNot(model.excluded).map(model.converted)
           val want = model.chooseLevel(eligible)
           assert(dut.io.level.peek().litValue == want, s"${cfg.name} $label (${w.length} spheres, ${eligible.length} eligible)")

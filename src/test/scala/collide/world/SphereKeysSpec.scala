@@ -46,24 +46,26 @@ class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   for (cfg <- configs; steps <- Seq(1, 2)) {
     val edges = if (steps == 2) "edges 2^k and 1.5 * 2^k" else "edges 2^k alone"
-    it should s"give the golden model's cells, box keys, needs and tops for ${cfg.name} values, faces and corners, $edges" in {
-      val bp = BroadPhaseParams.default.copy(cellSteps = steps)
+    val bp = BroadPhaseParams.default.copy(cellSteps = steps)
+    // Latency 1 (the output registered) and the 200 MHz latency (every segment its own stage),
+    // a new sphere each cycle, so a value staged wrongly meets another sphere's.
+    for (latency <- Seq(1, SphereKeys.latencyFor(cfg.params, bp, 200)).distinct)
+    it should s"give the golden model's cells, box keys, needs and tops for ${cfg.name} values, faces and corners, $edges, at latency $latency" in {
       val model = new BroadPhaseModel(cfg, bp)
       val rng = Seeds.rng(s"SphereKeysSpec-${cfg.name}-e$steps")
-      val f = cfg.format
       val vs = values(cfg, rng, Seeds.cases(600)).toIndexedSeq
       val qw = SphereKeys.qWidth(bp)
       val qrMax = (BigInt(1) << qw) - 1
       var inRange, overflowed, needs = 0
-      test(new SphereKeys(cfg.params, bp, latency = 1)) { dut =>
-        for ((x, idx) <- vs.zipWithIndex) {
-          val y = vs(rng.nextInt(vs.length)); val z = vs(rng.nextInt(vs.length)); val r = vs(rng.nextInt(vs.length))
-          val sphere = Seq(x, y, z, r)
-          val level = sphere.take(3).map(levelFor(cfg, bp, rng, _)).max
+      val cases = vs.indices.map { idx =>
+        val sphere = Seq(vs(idx), vs(rng.nextInt(vs.length)), vs(rng.nextInt(vs.length)), vs(rng.nextInt(vs.length)))
+        (sphere, sphere.take(3).map(levelFor(cfg, bp, rng, _)).max)
+      }
+      test(new SphereKeys(cfg.params, bp, latency)) { dut =>
+        def check(idx: Int): Unit = {
+          val (sphere, level) = cases(idx)
+          val r = sphere(3)
           val label = s"${cfg.name} case $idx: sphere ${sphere.map(b => "0x" + b.toString(16)).mkString(",")} level $level"
-          sphere.zipWithIndex.foreach { case (b, i) => dut.io.in.sphere(i).poke(b.U) }
-          dut.io.in.level.poke(level.S); dut.io.in.valid.poke(true.B)
-          dut.clock.step()
           assert(dut.io.out.valid.peek().litToBoolean, label)
           val nonFinite = !sphere.forall(finite(cfg, _))
           assert(dut.io.out.nonFinite.peek().litToBoolean == nonFinite, s"$label: nonFinite")
@@ -87,8 +89,17 @@ class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
             if (rPositive) { needs += 1; assert(dut.io.out.need.peek().litValue == model.need(r), s"$label: need") }
           }
         }
+        for (t <- 0 until cases.length + latency) {
+          if (t < cases.length) {
+            val (sphere, level) = cases(t)
+            sphere.zipWithIndex.foreach { case (b, i) => dut.io.in.sphere(i).poke(b.U) }
+            dut.io.in.level.poke(level.S); dut.io.in.valid.poke(true.B)
+          } else dut.io.in.valid.poke(false.B)
+          if (t >= latency) check(t - latency) else assert(!dut.io.out.valid.peek().litToBoolean, s"nothing out at cycle $t")
+          dut.clock.step()
+        }
       }
-      println(s"[SphereKeysSpec ${cfg.name} e$steps] ${vs.length} spheres: $inRange cells and box keys compared, $overflowed overflows, $needs needs")
+      println(s"[SphereKeysSpec ${cfg.name} e$steps latency $latency] ${vs.length} spheres: $inRange cells and box keys compared, $overflowed overflows, $needs needs")
       assert(inRange > vs.length / 3 && overflowed > 0 && needs > vs.length / 6, "the cases should cover all three outcomes")
     }
   }
