@@ -96,9 +96,10 @@ def main(argv=None):
                 n = len(spheres)  # the diamond's: at most the size asked for
                 world.write_cloud(path, spheres)
                 cpu = {}
-                for backend, space in (("ode", "sap"), ("simd", None)):
-                    s = world.run(a.collide, path, backend, space, a.repeat, work)
-                    cpu[backend] = s
+                # The tuned grid last: simd's contacts file is the one the AFU's is compared with.
+                for name, backend, space, extra in (("ode", "ode", "sap", ()), ("tuned1", "grid", None, ("--threads", "1")),
+                                                    ("tuned", "grid", None, ()), ("simd", "simd", None, ())):
+                    cpu[name] = world.run(a.collide, path, backend, space, a.repeat, work, extra)
                 for link in a.links.split(","):
                     summary = work / "afu.json"
                     clock = ["--clock-mhz", str(a.clock_mhz)] if a.clock_mhz is not None else []
@@ -115,6 +116,9 @@ def main(argv=None):
                     f = s["afu"]
                     ode = cpu["ode"]["broad_ns"] + cpu["ode"]["narrow_ns"]
                     grid = cpu["simd"]["broad_ns"] + cpu["simd"]["narrow_ns"]
+                    # The tuned grid's whole time (its finish is part of its work), one thread and all.
+                    tuned1, tuned = (cpu[k]["broad_ns"] + cpu[k]["narrow_ns"] + cpu[k].get("finish_ns", 0) for k in ("tuned1", "tuned"))
+                    best = min(ode, grid, tuned1, tuned)
                     row = {"cloud": kind, "spheres": n, "link": link, "clock_mhz": f["clock_mhz"],
                            "clock_given": 0 if a.clock_mhz is None else 1, "candidates": s["candidates"],
                            "contacts": s["contacts"], "afu_ns": f["modelled_ns"], "link_bound_ns": f["link_bound_ns"],
@@ -124,11 +128,13 @@ def main(argv=None):
                            "cycles_total": f["cycles_total"], "cycles_broad": f["cycles_broad"],
                            "cycles_load": f["cycles_load"], "cell_edge": f["cell_edge"], "large": f["large"],
                            "ode_sap_ns": ode, "simd_grid_ns": grid,
-                           "ode_over_afu": ode / f["modelled_ns"], "grid_over_afu": grid / f["modelled_ns"]}
+                           "ode_over_afu": ode / f["modelled_ns"], "grid_over_afu": grid / f["modelled_ns"],
+                           "tuned_grid_1t_ns": tuned1, "tuned_grid_ns": tuned, "threads": cpu["tuned"].get("threads", 0),
+                           "best_cpu_ns": best, "best_cpu_over_afu": best / f["modelled_ns"]}
                     rows.append(row)
                     print(f"{kind:9} {n:5} {link:6} {s['contacts']:6} contacts  afu {f['modelled_ns'] / 1e3:8.1f} us"
                           f" (bound {f['link_bound_ns'] / 1e3:6.1f}, broad {f['cycles_broad']} cycles)  ode sap "
-                          f"{ode / 1e3:8.1f} us  grid {grid / 1e3:7.1f} us", flush=True)
+                          f"{ode / 1e3:8.1f} us  grid {grid / 1e3:7.1f} us  tuned {tuned1 / 1e3:7.1f} / {tuned / 1e3:7.1f} us", flush=True)
     order = lambda r: CLOUDS.index(r["cloud"])
     rows, text_rows = sorted(kept + rows, key=order), sorted(kept_text + rows, key=order)
     refused = [l for l in refused_lines(out) if l.split(",")[0] not in clouds] + refused
@@ -201,8 +207,8 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
              "along x or boxes along x and y, whichever carries the fewest spheres (a run counting for 256), one AFU run each, all in one call",
              "through the AFU's run queue where the manifest has one: each run's table loads, and is fed to the broad",
              "phase, while the run before it computes) beside `--backend ode",
-             "--space sap` (ODE 0.16's sweep-and-prune space + dCollide, binary64) and `--backend simd` (our",
-             "grid + the binary32 kernel),",
+             "--space sap` (ODE 0.16's sweep-and-prune space + dCollide, binary64), `--backend simd` (our",
+             "grid + the binary32 kernel) and, where the columns are there, `--backend grid` (the tuned grid, one thread and all),",
              "both wall clock, fastest of N, on the same spheres in the same run (bench/world/afu_world.py).",
              "The AFU's contacts equal simd's byte for byte in every row (the script stops otherwise).",
              *([f"The AFU runs at {', '.join(sorted({format(r['clock_mhz'], 'g') for r in rows if r.get('clock_given')}))} MHz "
@@ -211,11 +217,14 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
              "Every number: [world-afu.csv](world-afu.csv)." +
              (" \"Before\": the same row's AFU time in the CSV given to --compare (see MACHINE.md's command)." if compare else ""), ""]
     cmp = compare or {}
+    tuned_cols = all("best_cpu_ns" in r for r in rows)  # rows measured before the tuned grid lack them
     for kind in [c for c in CLOUDS if any(r["cloud"] == c for r in rows)]:
         lines += [f"## {kind}" + (" (the paper's diamond at step 0, the largest with at most the row's size)" if kind == "diamond" else ""), "",
                   "| spheres | contacts | link | AFU runs | calls | AFU (us) | " + ("before (us) | " if cmp else "") +
-                  "link bound (us) | AFU / bound | broad-phase cycles | ODE sap (us) | ODE / AFU | grid (us) | grid / AFU |",
-                  "|---:|---:|---|---:|---:|---:|" + ("---:|" if cmp else "") + "---:|---:|---:|---:|---:|---:|---:|"]
+                  "link bound (us) | AFU / bound | broad-phase cycles | ODE sap (us) | ODE / AFU | grid (us) | grid / AFU |" +
+                  (" tuned grid, 1 thread (us) | tuned grid, all threads (us) | fastest CPU / AFU |" if tuned_cols else ""),
+                  "|---:|---:|---|---:|---:|---:|" + ("---:|" if cmp else "") + "---:|---:|---:|---:|---:|---:|---:|" +
+                  ("---:|---:|---:|" if tuned_cols else "")]
         for r in rows:
             if r["cloud"] != kind:
                 continue
@@ -225,7 +234,9 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
                          f"{int(r.get('calls', r['slabs']))} | {r['afu_ns'] / 1e3:,.1f} | {before}"
                          f"{r['link_bound_ns'] / 1e3:,.1f} | {r['afu_over_bound']:.1f}x | {int(r['cycles_broad']):,} | "
                          f"{r['ode_sap_ns'] / 1e3:,.1f} | {r['ode_over_afu']:.2f}x | {r['simd_grid_ns'] / 1e3:,.1f} | "
-                         f"{r['grid_over_afu']:.2f}x |")
+                         f"{r['grid_over_afu']:.2f}x |" +
+                         (f" {r['tuned_grid_1t_ns'] / 1e3:,.1f} | {r['tuned_grid_ns'] / 1e3:,.1f} | {r['best_cpu_over_afu']:.2f}x |"
+                          if tuned_cols else ""))
         refusals = [l for l in refused_lines(out) if l.startswith(kind + ",")]
         if refusals:
             lines += ["Refused by `collide spheres` (no cut of the world into runs of the AFU's table holds it; nothing", "was computed, nothing is missing from the rows above):", ""]
@@ -250,7 +261,10 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
     lines += ["## What it shows", "",
               f"- The AFU's world mode is {rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's "
               f"sweep-and-prune space + dCollide and {rng('grid_over_afu')[0]:.1f}-{rng('grid_over_afu')[1]:.1f}x faster "
-              "than our CPU grid + simd kernel on every cloud and size here (modelled AFU time against measured CPU time).",
+              "than our CPU grid + simd kernel on every cloud and size here (modelled AFU time against measured CPU time)" +
+              (f"; the fastest CPU peer measured beside it (the tuned grid, `--backend grid`, on one thread or all "
+               f"{int(max(r['threads'] for r in rows))}, or another) takes {rng('best_cpu_over_afu')[0]:.2f}-"
+               f"{rng('best_cpu_over_afu')[1]:.2f}x the AFU's time." if tuned_cols else "."),
               link_clause +
               f"{min(per):.1f}-{max(per):.1f} cycles a sphere of the world (one run: {min(one):.1f}-{max(one):.1f}; runs re-read their ghosts;",
               f"  its {lanes} candidate lane{plural} and its sort's passes of {spheres_a_cycle}),",

@@ -93,10 +93,10 @@ def write_cloud(path, spheres):
             f.write(",".join(v.hex() for v in s) + "\n")
 
 
-def run(collide, path, backend, space, repeat, work):
+def run(collide, path, backend, space, repeat, work, extra=()):
     summary = work / "summary.json"
     cmd = [str(collide), "spheres", "--backend", backend, "--in", str(path), "--out", str(work / "contacts.csv"),
-           "--repeat", str(repeat), "--summary", str(summary)]
+           "--repeat", str(repeat), "--summary", str(summary), *extra]
     if space:
         cmd += ["--space", space]
     p = subprocess.run(cmd, capture_output=True, text=True)
