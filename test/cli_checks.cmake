@@ -10,6 +10,22 @@ function(expect_match text regex)
     message(FATAL_ERROR "expected output matching '${regex}', got:\n${text}")
   endif()
 endfunction()
+# The world the grid and engine checks share (bad spheres, touching and coincident pairs among
+# them) in ${WORK}/in.csv, and simd's contacts for it in `want` (the caller's scope).
+macro(simd_reference_world)
+  file(WRITE ${WORK}/in.csv "x,y,z,r\n0,0,0,1\n0x1.8p+1,0,0,1\n 1.5 ,0,0,1\n\nnan,0,0,1\n0,0,0,-1\n-8,-8,-8,0.1\n-8,-8,-7.75,0.2\n0,0,0,0.5\n3,0,0,0.5\n40,40,40,30\n")
+  execute_process(COMMAND ${COLLIDE} spheres --backend simd --in ${WORK}/in.csv --out ${WORK}/simd.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  file(READ ${WORK}/simd.csv want)
+endmacro()
+# A contacts file that must equal simd's (`want`), `what` naming the run in the failure.
+function(expect_simd_contacts file what)
+  file(READ ${file} got)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "${what}: contacts differ from simd's:\n--- got\n${got}--- want\n${want}")
+  endif()
+endfunction()
 
 set(pairs "x1,y1,z1,r1,x2,y2,z2,r2\n0,0,0,1,0,0,0,2\n3,4,0,2,0,0,0,3\n0x1.8p+1,4,0,1,0,0,0,1\n")
 if(CHECK STREQUAL "pairs_simd" OR CHECK STREQUAL "pairs_ode")
@@ -533,11 +549,7 @@ elseif(CHECK STREQUAL "spheres_simd_ode")
 elseif(CHECK STREQUAL "spheres_grid")
   # The tuned grid writes simd's contacts byte for byte at every thread count (bad spheres,
   # touching and coincident pairs among them); --threads is checked and names itself.
-  file(WRITE ${WORK}/in.csv "x,y,z,r\n0,0,0,1\n0x1.8p+1,0,0,1\n 1.5 ,0,0,1\n\nnan,0,0,1\n0,0,0,-1\n-8,-8,-8,0.1\n-8,-8,-7.75,0.2\n0,0,0,0.5\n3,0,0,0.5\n40,40,40,30\n")
-  execute_process(COMMAND ${COLLIDE} spheres --backend simd --in ${WORK}/in.csv --out ${WORK}/simd.csv
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  expect_rc(0)
-  file(READ ${WORK}/simd.csv want)
+  simd_reference_world()
   foreach(threads 1 2 3)
     execute_process(COMMAND ${COLLIDE} spheres --backend grid --threads ${threads} --in ${WORK}/in.csv --out ${WORK}/grid.csv
                             --repeat 2 --summary ${WORK}/summary.json
@@ -545,10 +557,7 @@ elseif(CHECK STREQUAL "spheres_grid")
     expect_rc(0)
     expect_match("${err}" "10 spheres \\(2 bad\\), [0-9]+ candidate pairs, [0-9]+ contacts, grid \\(tuned, ${threads} threads?\\)")
     expect_match("${err}" "time \\(fastest of 2\\): broad [0-9.]+ us, narrow [0-9.]+ us, finish [0-9.]+ us")
-    file(READ ${WORK}/grid.csv got)
-    if(NOT got STREQUAL want)
-      message(FATAL_ERROR "--threads ${threads}: grid.csv differs from simd's:\n--- got\n${got}--- want\n${want}")
-    endif()
+    expect_simd_contacts(${WORK}/grid.csv "--threads ${threads}")
     file(READ ${WORK}/summary.json summary)
     string(JSON n GET "${summary}" threads)
     string(JSON backendName GET "${summary}" backend)
@@ -560,10 +569,7 @@ elseif(CHECK STREQUAL "spheres_grid")
   execute_process(COMMAND ${COLLIDE} spheres --backend grid --in ${WORK}/in.csv --out ${WORK}/grid.csv
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   expect_rc(0)
-  file(READ ${WORK}/grid.csv got)
-  if(NOT got STREQUAL want)
-    message(FATAL_ERROR "default threads: grid.csv differs from simd's")
-  endif()
+  expect_simd_contacts(${WORK}/grid.csv "default threads")
   foreach(threads 0 -2 abc 1.5 1025 99999999999)
     execute_process(COMMAND ${COLLIDE} spheres --backend grid --threads=${threads} --in ${WORK}/in.csv --out ${WORK}/bad.csv
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -585,11 +591,7 @@ elseif(CHECK STREQUAL "spheres_engines")
   # (bad spheres, touching and coincident pairs among them), with the engine's own narrow
   # phase counted on stderr and in the summary; ODE's quadtree writes ODE sap's contacts. A
   # build without an engine (HAVE_BULLET, HAVE_FCL) says so; a space of another engine is refused.
-  file(WRITE ${WORK}/in.csv "x,y,z,r\n0,0,0,1\n0x1.8p+1,0,0,1\n 1.5 ,0,0,1\n\nnan,0,0,1\n0,0,0,-1\n-8,-8,-8,0.1\n-8,-8,-7.75,0.2\n0,0,0,0.5\n3,0,0,0.5\n40,40,40,30\n")
-  execute_process(COMMAND ${COLLIDE} spheres --backend simd --in ${WORK}/in.csv --out ${WORK}/simd.csv
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  expect_rc(0)
-  file(READ ${WORK}/simd.csv want)
+  simd_reference_world()
   foreach(run "bullet;dbvt;${HAVE_BULLET}" "bullet;sap;${HAVE_BULLET}" "fcl;tree;${HAVE_FCL}" "fcl;sap;${HAVE_FCL}"
               "fcl;hash;${HAVE_FCL}")
     list(GET run 0 backend)
@@ -607,10 +609,7 @@ elseif(CHECK STREQUAL "spheres_engines")
     expect_match("${err}" "10 spheres \\(2 bad\\), [0-9]+ candidate pairs, [0-9]+ contacts, broad phase ${backend} ${space} \\(")
     expect_match("${err}" "narrow phase simd \\(binary32\\)")
     expect_match("${err}" "the engine's own narrow phase, [^\n]*: [0-9.]+ us, [0-9]+ contacts \\(0 that binary32 calls no contact, 0 binary32 contacts it misses")
-    file(READ ${WORK}/${backend}.csv got)
-    if(NOT got STREQUAL want)
-      message(FATAL_ERROR "${backend} ${space}: contacts differ from simd's:\n--- got\n${got}--- want\n${want}")
-    endif()
+    expect_simd_contacts(${WORK}/${backend}.csv "${backend} ${space}")
     file(READ ${WORK}/summary.json summary)
     string(JSON backendName GET "${summary}" backend)
     string(JSON narrowName GET "${summary}" narrow_phase)

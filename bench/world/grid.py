@@ -16,8 +16,6 @@ machine).
 """
 import argparse
 import csv
-import hashlib
-import json
 import os
 import random
 import shlex
@@ -48,17 +46,7 @@ def clustered_mixed(n, seed):
 
 
 def run(collide, path, backend, threads, repeat, work):
-    out, summary = work / f"{backend}-{threads}.csv", work / "summary.json"
-    cmd = [str(collide), "spheres", "--backend", backend, "--in", str(path), "--out", str(out),
-           "--repeat", str(repeat), "--summary", str(summary)]
-    if threads:
-        cmd += ["--threads", str(threads)]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"grid: {' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
-    s = json.loads(summary.read_text())
-    s["sha256"] = hashlib.sha256(out.read_bytes()).hexdigest()
-    return s
+    return world.run(collide, path, backend, None, repeat, work, ("--threads", str(threads)) if threads else ())
 
 
 def lscpu_model():

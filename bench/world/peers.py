@@ -17,19 +17,16 @@ their sum). Bullet's and FCL's own narrow phases on the same candidates are time
 """
 import argparse
 import csv
-import hashlib
-import json
 import os
 import shlex
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import grid  # noqa: E402  (clustered_mixed, lscpu_model)
-import world  # noqa: E402  (the uniform cloud, the CSV writer)
+import world  # noqa: E402  (the uniform cloud, the CSV writer, collide spheres)
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -46,21 +43,6 @@ CONFIGS = [
     ("fcl sap", "fcl", ["--space", "sap"], "binary32"),
     ("fcl hash", "fcl", ["--space", "hash"], "binary32"),
 ]
-
-
-def run(collide, path, backend, opts, repeat, work):
-    out, summary = work / "contacts.csv", work / "summary.json"
-    cmd = [str(collide), "spheres", "--backend", backend, *opts, "--in", str(path), "--out", str(out),
-           "--repeat", str(repeat), "--summary", str(summary)]
-    t0 = time.monotonic()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.monotonic() - t0
-    if p.returncode != 0:
-        sys.exit(f"peers: {' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
-    s = json.loads(summary.read_text())
-    s["sha256"] = hashlib.sha256(out.read_bytes()).hexdigest()
-    s["wall_s"] = wall
-    return s
 
 
 def uptime():
@@ -129,10 +111,10 @@ def main(argv=None):
                 world.write_cloud(path, world.cloud("uniform", n, a.seed) if cloud == "uniform" else grid.clustered_mixed(n, a.seed))
                 want = {}
                 for config, backend, opts, kind in CONFIGS:
-                    s = run(a.collide, path, backend, opts, 1, work)
+                    s = world.run(a.collide, path, backend, None, 1, work, opts)
                     repeat = 1
                     if s["wall_s"] < a.slow_s and a.repeat > 1:
-                        s = run(a.collide, path, backend, opts, a.repeat, work)
+                        s = world.run(a.collide, path, backend, None, a.repeat, work, opts)
                         repeat = a.repeat
                     want.setdefault(kind, s["sha256"])
                     if s["sha256"] != want[kind]:

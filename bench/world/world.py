@@ -16,6 +16,7 @@ spheres):
 """
 import argparse
 import csv
+import hashlib
 import json
 import math
 import os
@@ -26,6 +27,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -94,15 +96,22 @@ def write_cloud(path, spheres):
 
 
 def run(collide, path, backend, space, repeat, work, extra=()):
-    summary = work / "summary.json"
-    cmd = [str(collide), "spheres", "--backend", backend, "--in", str(path), "--out", str(work / "contacts.csv"),
+    """`collide spheres` once (fastest of `repeat` inside), its contacts in work/contacts.csv:
+    its summary, with the contacts file's SHA-256 and the call's wall time (`sha256`, `wall_s`)."""
+    summary, contacts = work / "summary.json", work / "contacts.csv"
+    cmd = [str(collide), "spheres", "--backend", backend, "--in", str(path), "--out", str(contacts),
            "--repeat", str(repeat), "--summary", str(summary), *extra]
     if space:
         cmd += ["--space", space]
+    t0 = time.monotonic()
     p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.monotonic() - t0
     if p.returncode != 0:
         sys.exit(f"world: {' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
-    return json.loads(summary.read_text())
+    s = json.loads(summary.read_text())
+    s["sha256"] = hashlib.sha256(contacts.read_bytes()).hexdigest()
+    s["wall_s"] = wall
+    return s
 
 
 def plot(rows, out):
