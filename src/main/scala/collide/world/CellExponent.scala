@@ -6,7 +6,7 @@ import collide.fp.FpParams
 
 /** Chooses the broad phase's cell level while the sphere table streams in, `ports`
   * spheres a cycle, with no pass at the end: it keeps the largeMax+1 largest needs in a sorted
-  * register list (`ports` insertions a cycle, one after the other in logic), so the (largeMax+1)-th largest need, the smallest kept, is
+  * register list (`ports` insertions a cycle, in one step of logic), so the (largeMax+1)-th largest need, the smallest kept, is
   * always at hand; and the largest coordinate exponent. The level is max(that need,
   * 2 top - levelCoordOffset, levelFloor), as BroadPhaseModel.chooseLevel. Excluded spheres
   * (nonFinite) are not counted.
@@ -51,32 +51,46 @@ class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Mo
   private val topMax = RegInit(minK)
   private val anyTop = RegInit(false.B)
 
-  // Insertion: slot i takes the new need if it beats kept(i) but not kept(i-1), takes
-  // kept(i-1) if the new one beat that, else stays; the last slot's old value drops out.
-  // A need that beats no slot still fills the first unused one (all slots are minK there,
-  // and a minK need equals them: nothing changes, which is right).
-  private def insert(list: Vec[SInt], need: SInt): Vec[SInt] = {
-    val beats = list.map(need > _)
-    VecInit((0 until slots).map { i =>
-      if (i == 0) Mux(beats(0), need, list(0))
-      else Mux(beats(i - 1), list(i - 1), Mux(beats(i), need, list(i)))
-    })
+  // Insertion: a need lands before the first kept need it beats (strictly), so ties keep the
+  // older one first; the last slot's old value drops out. A sphere that is not taken, or has no
+  // need, inserts minK, which beats no slot: the list stays as it was. Two ports insert at once
+  // from compares against the old list only (not one insertion after the other, which put two
+  // compare chains in series): hi = the greater need goes first, lo second, so slot i takes
+  // L(i-2) once lo beat L(i-2), lo where lo first beats, L(i-1) past hi, hi where hi first
+  // beats, else L(i).
+  private val takes = io.in.map(in => in.valid && !in.nonFinite)
+  private val needs = io.in.zip(takes).map { case (in, t) => Mux(t && !in.needNone, in.need, minK) }
+  private def beatsOf(need: SInt): Seq[Bool] = kept.map(need > _)
+  private val inserted: Seq[SInt] = if (ports == 1) {
+    val beats = beatsOf(needs(0))
+    (0 until slots).map { i =>
+      if (i == 0) Mux(beats(0), needs(0), kept(0)) else Mux(beats(i - 1), kept(i - 1), Mux(beats(i), needs(0), kept(i)))
+    }
+  } else {
+    val (a, b) = (needs(0), needs(1))
+    val aFirst = a >= b
+    val (aBeats, bBeats) = (beatsOf(a), beatsOf(b))
+    val hiBeats = aBeats.zip(bBeats).map { case (x, y) => Mux(aFirst, x, y) }
+    val loBeats = aBeats.zip(bBeats).map { case (x, y) => Mux(aFirst, y, x) }
+    val (hi, lo) = (Mux(aFirst, a, b), Mux(aFirst, b, a))
+    def at(s: Seq[Bool], i: Int): Bool = if (i < 0) false.B else s(i)
+    def old(i: Int): SInt = if (i < 0) minK else kept(i)
+    (0 until slots).map { i =>
+      Mux(at(loBeats, i - 2), old(i - 2), Mux(at(loBeats, i - 1), lo,
+        Mux(at(hiBeats, i - 1), old(i - 1), Mux(hiBeats(i), hi, kept(i)))))
+    }
   }
-  private def saturate(u: UInt, n: UInt): UInt = Mux(u +& n > slots.U, slots.U, u +& n)
-  private def maxS(a: SInt, b: SInt) = Mux(a > b, a, b)
-  // Each port's sphere in turn: an excluded one (nonFinite) leaves everything as it was.
-  private val after = io.in.foldLeft((kept: Vec[SInt], used: UInt, topMax: SInt, anyTop: Bool)) { case ((ks, u, tm, at), in) =>
-    val take = in.valid && !in.nonFinite
-    val need = Mux(in.needNone, minK, in.need)
-    val hasTop = take && !in.topNone
-    val ins = insert(ks, need)
-    (VecInit(ins.zip(ks).map { case (a, b) => Mux(take, a, b) }), saturate(u, take.asUInt),
-      Mux(hasTop, Mux(at, maxS(tm, in.top), in.top), tm), at || hasTop)
+  private val usedNext = Mux(used +& PopCount(takes) > slots.U, slots.U, used +& PopCount(takes))
+  // The largest top: every candidate compared with every other at once (the first of equals wins).
+  private val tops = topMax +: io.in.zip(takes).map { case (in, t) => Mux(t && !in.topNone, in.top, minK) }
+  private val topWins = tops.indices.map { k =>
+    tops.indices.filter(_ != k).map(j => if (j < k) tops(k) > tops(j) else tops(k) >= tops(j)).reduce(_ && _)
   }
+  private val anyTopNext = anyTop || io.in.zip(takes).map { case (in, t) => t && !in.topNone }.reduce(_ || _)
   when(io.clear) {
     kept.foreach(_ := minK); used := 0.U; topMax := minK; anyTop := false.B
   }.otherwise {
-    kept := after._1; used := after._2; topMax := after._3; anyTop := after._4
+    kept := VecInit(inserted); used := usedNext; topMax := Mux1H(topWins, tops); anyTop := anyTopNext
   }
 
   // Fewer spheres than slots: all in the grid, sized for the biggest (kept(0)); else the
@@ -84,6 +98,7 @@ class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Mo
   private val levelSmall = Mux(used === slots.U, kept(slots - 1), kept(0))
   private val levelCoord = Mux(anyTop, (topMax << 1) -& bp.levelCoordOffset.S, minK)
   private val levelFloor = bp.levelFloor(p).S(w.W)
+  private def maxS(a: SInt, b: SInt) = Mux(a > b, a, b)
   // Two registered steps (CellExponent.levelLatency), a compare each: the kept need against the
   // floor beside the coordinates' bound, then the greater of the two.
   private val levelA = Reg(SInt(w.W))

@@ -9,7 +9,8 @@ import collide.testutil.Seeds
   * back-pressure on the lines, come out in pair lines exactly as the host lays out a pair list:
   * every candidate once, a cycle's candidates in lane order after those taken before, lines
   * numbered from 0, a line's unused slots zero, and `emitted` the candidates in the lines out.
-  * With more lanes than a line has slots (32), the lanes past a line's room wait their turn. */
+  * With more lanes than a line has slots (32), every lane waits while the buffer has no room
+  * for all of them. */
 class WorldPairLinesSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "WorldPairLines"
 
@@ -76,7 +77,7 @@ class WorldPairLinesSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "pack 16 lanes' candidates, a cycle's in lane order, under back-pressure" in soak(16, 12, 0.5, 0.5)
 
-  it should "let 32 lanes offer at once, those past a line's room waiting their turn" in soak(32, 10, 0.9, 0.8)
+  it should "let 32 lanes offer at once, all of them waiting while the buffer lacks room for every lane" in soak(32, 10, 0.9, 0.8)
 
   it should "pack sparse candidates from 32 lanes and flush the last part-full line" in soak(32, 3, 0.1, 0.9)
 }
