@@ -159,53 +159,56 @@ object Generate {
         case Some(bp) => step(flag, c.copy(world = Some(f(bp, a))))
         case None => Left(s"$flag: world mode is not built (add --world true or --preset world)")
       })(c)
-    for {
-      base <- AfuConfig.presets.get(o.preset).toRight(
-        s"--preset: unknown preset '${o.preset}' (known: ${AfuConfig.all.map(_.name).mkString(", ")})")
-      c1 <- opt("--scpu", o.scpu)((c, s) => ScpuConfig.parse(s).flatMap(sc => step("--scpu", c.copy(scpu = sc))))(base)
-      c2 <- opt("--format", o.format)((c, f) => ScpuConfig.presets.get(f.toLowerCase) match {
+    // Each flag in turn, in this order (later ones see the earlier ones' choices); the first
+    // refusal stops the chain.
+    val steps: Seq[AfuConfig => Either[String, AfuConfig]] = Seq(
+      opt("--scpu", o.scpu)((c, s) => ScpuConfig.parse(s).flatMap(sc => step("--scpu", c.copy(scpu = sc)))),
+      opt("--format", o.format)((c, f) => ScpuConfig.presets.get(f.toLowerCase) match {
         case Some(sc) if o.scpu.isEmpty => step("--format", c.copy(scpu = sc))
         case _ => ScpuConfig.parse(s"${c.scpu.name}:format=$f").flatMap(sc => step("--format", c.copy(scpu = sc)))
-      })(c1)
-      c3 <- opt("--tag-bits", o.tagBits)((c, v) => step("--tag-bits", c.copy(tagBits = v,
+      }),
+      opt("--tag-bits", o.tagBits)((c, v) => step("--tag-bits", c.copy(tagBits = v,
         maxReadsOutstanding = c.maxReadsOutstanding.min(1 << v.max(1).min(16)),
-        maxWritesOutstanding = c.maxWritesOutstanding.min(1 << v.max(1).min(16)))))(c2)
-      c4 <- opt("--scpus", o.scpus)((c, v) => step("--scpus", c.copy(scpus = v)))(c3)
-      c5 <- opt("--max-spheres", o.maxSpheres)((c, v) => step("--max-spheres", c.copy(maxSpheres = v)))(c4)
-      c6 <- opt("--max-reads", o.maxReads)((c, v) => step("--max-reads", c.copy(maxReadsOutstanding = v)))(c5)
-      c7 <- opt("--max-writes", o.maxWrites)((c, v) => step("--max-writes", c.copy(maxWritesOutstanding = v)))(c6)
-      c8 <- opt("--ram-ports", o.ramPorts)((c, v) => SphereRamPorts.parse(v).flatMap(r => step("--ram-ports", c.copy(ramPorts = r))))(c7)
-      c9 <- opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v)))(c8)
-      c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
-      c11 <- opt("--world", o.world)((c, v) => step("--world",
+        maxWritesOutstanding = c.maxWritesOutstanding.min(1 << v.max(1).min(16))))),
+      opt("--scpus", o.scpus)((c, v) => step("--scpus", c.copy(scpus = v))),
+      opt("--max-spheres", o.maxSpheres)((c, v) => step("--max-spheres", c.copy(maxSpheres = v))),
+      opt("--max-reads", o.maxReads)((c, v) => step("--max-reads", c.copy(maxReadsOutstanding = v))),
+      opt("--max-writes", o.maxWrites)((c, v) => step("--max-writes", c.copy(maxWritesOutstanding = v))),
+      opt("--ram-ports", o.ramPorts)((c, v) => SphereRamPorts.parse(v).flatMap(r => step("--ram-ports", c.copy(ramPorts = r)))),
+      opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v))),
+      opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r))))),
+      opt("--world", o.world)((c, v) => step("--world",
         c.copy(world = if (v) Some(c.world.getOrElse(BroadPhaseParams.default)) else None, runQueue = v && c.runQueue,
-          startAhead = v && c.startAhead, worldLineQueue = if (v) c.worldLineQueue else 2)))(c10)
-      c12 <- world("--world-lanes", o.worldLanes)((bp, v) => bp.copy(lanes = v,
-        sortPorts = BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max))(c11) // ports follow the lanes down
-      c13 <- world("--world-sort-ports", o.worldSortPorts)((bp, v) => bp.copy(sortPorts = v))(c12)
-      c14 <- world("--world-buckets-per-sphere", o.worldBucketsPerSphere) { (bp, v) =>
+          startAhead = v && c.startAhead, worldLineQueue = if (v) c.worldLineQueue else 2))),
+      world("--world-lanes", o.worldLanes)((bp, v) => bp.copy(lanes = v,
+        sortPorts = BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max)), // ports follow the lanes down
+      world("--world-sort-ports", o.worldSortPorts)((bp, v) => bp.copy(sortPorts = v)),
+      world("--world-buckets-per-sphere", o.worldBucketsPerSphere) { (bp, v) =>
         require(Seq(1, 2, 4).contains(v), s"must be 1, 2 or 4, got $v")
         bp.copy(bucketsPerSphereLog2 = Seq(1, 2, 4).indexOf(v))
-      }(c13)
-      c15 <- world("--world-cell-steps", o.worldCellSteps)((bp, v) => bp.copy(cellSteps = v))(c14)
-      c16 <- world("--world-chunk", o.worldChunk)((bp, v) => bp.copy(chunk = v))(c15)
-      c17 <- world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v,
-        scanPairs = bp.scanPairs && v))(c16)
-      c18 <- world("--world-claims", o.worldClaims)((bp, v) => bp.copy(claims = v))(c17)
-      c19 <- world("--world-hit-queue", o.worldHitQueue)((bp, v) => bp.copy(hitQueue = v))(c18)
-      c20 <- world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v))(c19)
-      c21 <- world("--world-box-buckets", o.worldBoxBuckets)((bp, v) => bp.copy(boxBuckets = v))(c20)
-      c22 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c21)
-      c23 <- opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v, startAhead = v && c.startAhead)))(c22)
-      c24 <- world("--world-drain-behind", o.worldDrainBehind)((bp, v) => bp.copy(drainBehind = v))(c23)
-      c25 <- world("--world-look-ahead", o.worldLookAhead)((bp, v) => bp.copy(lookAhead = v))(c24)
-      c26 <- world("--world-scan-pairs", o.worldScanPairs)((bp, v) => bp.copy(scanPairs = v))(c25)
-      c27 <- opt("--world-line-queue", o.worldLineQueue)((c, v) => step("--world-line-queue", c.copy(worldLineQueue = v)))(c26)
-      c28 <- opt("--start-ahead", o.startAhead)((c, v) => step("--start-ahead", c.copy(startAhead = v)))(c27)
-      c29 <- world("--world-clear-behind", o.worldClearBehind)((bp, v) => bp.copy(clearBehind = v))(c28)
-      c30 <- world("--world-near-filter", o.worldNearFilter)((bp, v) => bp.copy(nearFilter = v))(c29)
-      c31 <- opt("--device", o.device)((c, v) => Device.byName(v).left.map(e => s"--device: $e").map(d => c.copy(device = d)))(c30)
-    } yield c31
+      },
+      world("--world-cell-steps", o.worldCellSteps)((bp, v) => bp.copy(cellSteps = v)),
+      world("--world-chunk", o.worldChunk)((bp, v) => bp.copy(chunk = v)),
+      world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v,
+        scanPairs = bp.scanPairs && v)),
+      world("--world-claims", o.worldClaims)((bp, v) => bp.copy(claims = v)),
+      world("--world-hit-queue", o.worldHitQueue)((bp, v) => bp.copy(hitQueue = v)),
+      world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v)),
+      world("--world-box-buckets", o.worldBoxBuckets)((bp, v) => bp.copy(boxBuckets = v)),
+      opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i)))),
+      opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v, startAhead = v && c.startAhead))),
+      world("--world-drain-behind", o.worldDrainBehind)((bp, v) => bp.copy(drainBehind = v)),
+      world("--world-look-ahead", o.worldLookAhead)((bp, v) => bp.copy(lookAhead = v)),
+      world("--world-scan-pairs", o.worldScanPairs)((bp, v) => bp.copy(scanPairs = v)),
+      opt("--world-line-queue", o.worldLineQueue)((c, v) => step("--world-line-queue", c.copy(worldLineQueue = v))),
+      opt("--start-ahead", o.startAhead)((c, v) => step("--start-ahead", c.copy(startAhead = v))),
+      world("--world-clear-behind", o.worldClearBehind)((bp, v) => bp.copy(clearBehind = v)),
+      world("--world-near-filter", o.worldNearFilter)((bp, v) => bp.copy(nearFilter = v)),
+      opt("--device", o.device)((c, v) => Device.byName(v).left.map(e => s"--device: $e").map(d => c.copy(device = d))),
+    )
+    AfuConfig.presets.get(o.preset).toRight(
+      s"--preset: unknown preset '${o.preset}' (known: ${AfuConfig.all.map(_.name).mkString(", ")})")
+      .flatMap(base => steps.foldLeft[Either[String, AfuConfig]](Right(base))((c, f) => c.flatMap(f)))
   }
 
   val firtoolOpts: Array[String] = Array(
