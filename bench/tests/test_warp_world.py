@@ -137,6 +137,19 @@ class Options(unittest.TestCase):
         self.assertIs(opts["fuse_fp"], False)
         self.assertIs(opts["fast_math"], False)
 
+    def test_the_cuda_code_has_no_fma_and_ieee_sqrt_and_division(self):
+        # Warp compiles CUDA code with NVRTC, which needs no GPU: the kernels for sm_90 (an H100),
+        # as PTX. With fuse_fp on, the same PTX holds fma.rn.f32 (tried: 5 of them).
+        with tempfile.TemporaryDirectory() as d:
+            try:
+                paths = wp.compile_aot_module(warp_world, arch=90, module_dir=d, use_ptx=True)
+            except Exception as e:  # noqa: BLE001 (a Warp build without NVRTC)
+                self.skipTest(f"Warp cannot compile CUDA code here: {e}")
+            ptx = b"".join(Path(p).read_bytes() for p in paths if str(p).endswith(".ptx"))
+        self.assertTrue(b"sqrt.rn.f32" in ptx, "no correctly rounded sqrt in the PTX")  # the kernel's one sqrt
+        for bad in (b"fma.", b".approx", b".ftz"):
+            self.assertFalse(bad in ptx, f"{bad.decode()} in the PTX for sm_90")
+
     def test_a_missing_cuda_device_is_refused(self):
         if wp.get_cuda_device_count() > 0:
             self.skipTest("this machine has a CUDA device")
