@@ -368,25 +368,40 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   }
 
   private val classifying = state === S.classify
-  private def countOf(f: Keyed => Bool): UInt = PopCount(keyed.map(kd => kd.valid && f(kd)))
+  // The ports' counts are registered and added a cycle later (the need's compare, the count and
+  // a 32-bit add in one cycle were a long path); the last lands in the prefix state's first cycle.
+  private def countOf(f: Keyed => Bool): UInt = RegNext(countBits(keyed.map(kd => classifying && kd.valid && f(kd))), 0.U)
+  st.excluded := st.excluded + countOf(_.out.nonFinite)
+  st.small := st.small + countOf(_.isSmall)
   when(classifying) {
-    st.excluded := st.excluded + countOf(_.out.nonFinite)
-    st.small := st.small + countOf(_.isSmall)
     when(keyed.map(kd => kd.valid && kd.isSmall && kd.out.cellOverflow).reduce(_ || _)) { st.cellOverflow := true.B }
   }
   // Large spheres join the list in port order (the list's order does not matter: two large
-  // spheres meet once, from the lower index).
-  private val largeHere = keyed.map(kd => classifying && kd.valid && kd.isLarge)
-  for ((kd, q) <- keyed.zipWithIndex) {
-    val slot = largeCount +& PopCount(largeHere.take(q))
-    when(largeHere(q)) {
-      when(slot < bp.largeMax.U) { larges(VecIndex(slot, largeSlots)) := WorldKey(itemW, kd.index, record(kd.o)) }
-        .otherwise { st.largeOverflow := true.B }
-    }
+  // spheres meet once, from the lower index), a cycle after SphereKeys gives them: the ports'
+  // large flags and keys are registered (the need's compare, the ports' count, the slot's add
+  // and the list's write in one cycle were the broad phase's slowest path). The next cycle the
+  // cycle's large keys are packed in port order (packed(j): the j-th, chosen by the registered
+  // flags alone) and slot s takes packed(s - largeCount), a mux on a register: no add on the way.
+  private val largeHere = RegNext(VecInit(keyed.map(kd => classifying && kd.valid && kd.isLarge)),
+    VecInit(Seq.fill(ports)(false.B)))
+  private val largeKeys = RegNext(VecInit(keyed.map(kd => WorldKey(itemW, kd.index, record(kd.o)))))
+  private val largeNow = countBits(largeHere)
+  private val packed = VecInit.tabulate(ports) { j =>
+    Mux1H((j until ports).map(q => (largeHere(q) && countBits(largeHere.take(q)) === j.U) -> largeKeys(q)))
   }
-  private val largeNew = largeCount +& PopCount(largeHere)
+  for (s <- 0 until bp.largeMax) {
+    val js = (0 until ports).filter(j => s - j >= 0)
+    val takes = js.map(j => largeCount === (s - j).U && largeNow > j.U)
+    when(VecInit(takes).asUInt.orR) { larges(s) := Mux1H(takes, js.map(packed(_))) }
+  }
+  private val largeNew = largeCount +& largeNow
   private val largeKept = Mux(largeNew > bp.largeMax.U, bp.largeMax.U, largeNew)
-  when(classifying) { st.large := st.large + (largeKept - largeCount); largeCount := largeKept }
+  // st.large counts with largeCount from zero in each world (both cleared at its start), so it
+  // is set to the count, not added to.
+  when(largeHere.asUInt.orR) {
+    when(largeNew > bp.largeMax.U) { st.largeOverflow := true.B }
+    st.large := largeKept; largeCount := largeKept
+  }
 
   private val slack = {
     // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), k = ceil(level / 2),
