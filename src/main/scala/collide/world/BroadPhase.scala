@@ -368,25 +368,40 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   }
 
   private val classifying = state === S.classify
-  private def countOf(f: Keyed => Bool): UInt = PopCount(keyed.map(kd => kd.valid && f(kd)))
+  // The ports' counts are registered and added a cycle later (the need's compare, the count and
+  // a 32-bit add in one cycle were a long path); the last lands in the prefix state's first cycle.
+  private def countOf(f: Keyed => Bool): UInt = RegNext(countBits(keyed.map(kd => classifying && kd.valid && f(kd))), 0.U)
+  st.excluded := st.excluded + countOf(_.out.nonFinite)
+  st.small := st.small + countOf(_.isSmall)
   when(classifying) {
-    st.excluded := st.excluded + countOf(_.out.nonFinite)
-    st.small := st.small + countOf(_.isSmall)
     when(keyed.map(kd => kd.valid && kd.isSmall && kd.out.cellOverflow).reduce(_ || _)) { st.cellOverflow := true.B }
   }
   // Large spheres join the list in port order (the list's order does not matter: two large
-  // spheres meet once, from the lower index).
-  private val largeHere = keyed.map(kd => classifying && kd.valid && kd.isLarge)
-  for ((kd, q) <- keyed.zipWithIndex) {
-    val slot = largeCount +& PopCount(largeHere.take(q))
-    when(largeHere(q)) {
-      when(slot < bp.largeMax.U) { larges(VecIndex(slot, largeSlots)) := WorldKey(itemW, kd.index, record(kd.o)) }
-        .otherwise { st.largeOverflow := true.B }
-    }
+  // spheres meet once, from the lower index), a cycle after SphereKeys gives them: the ports'
+  // large flags and keys are registered (the need's compare, the ports' count, the slot's add
+  // and the list's write in one cycle were the broad phase's slowest path). The next cycle the
+  // cycle's large keys are packed in port order (packed(j): the j-th, chosen by the registered
+  // flags alone) and slot s takes packed(s - largeCount), a mux on a register: no add on the way.
+  private val largeHere = RegNext(VecInit(keyed.map(kd => classifying && kd.valid && kd.isLarge)),
+    VecInit(Seq.fill(ports)(false.B)))
+  private val largeKeys = RegNext(VecInit(keyed.map(kd => WorldKey(itemW, kd.index, record(kd.o)))))
+  private val largeNow = countBits(largeHere)
+  private val packed = VecInit.tabulate(ports) { j =>
+    Mux1H((j until ports).map(q => (largeHere(q) && countBits(largeHere.take(q)) === j.U) -> largeKeys(q)))
   }
-  private val largeNew = largeCount +& PopCount(largeHere)
+  for (s <- 0 until bp.largeMax) {
+    val js = (0 until ports).filter(j => s - j >= 0)
+    val takes = js.map(j => largeCount === (s - j).U && largeNow > j.U)
+    when(VecInit(takes).asUInt.orR) { larges(s) := Mux1H(takes, js.map(packed(_))) }
+  }
+  private val largeNew = largeCount +& largeNow
   private val largeKept = Mux(largeNew > bp.largeMax.U, bp.largeMax.U, largeNew)
-  when(classifying) { st.large := st.large + (largeKept - largeCount); largeCount := largeKept }
+  // st.large counts with largeCount from zero in each world (both cleared at its start), so it
+  // is set to the count, not added to.
+  when(largeHere.asUInt.orR) {
+    when(largeNew > bp.largeMax.U) { st.largeOverflow := true.B }
+    st.large := largeKept; largeCount := largeKept
+  }
 
   private val slack = {
     // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), k = ceil(level / 2),
@@ -440,6 +455,21 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     gen.io.largeTo := cut(l + 1)
     io.pairs(l) <> gen.io.pairs
   }
+  /** The number of set bits, of full and half adders in gates: yosys maps a `+` (PopCount's) to a
+    * carry chain, whose entry alone costs more than a LUT; gates are left to the LUT mapper. */
+  private def countBits(bits: Seq[Bool]): UInt = {
+    var cols: Seq[Seq[Bool]] = Seq(bits)
+    while (cols.exists(_.length > 1)) {
+      val nx = Array.fill(cols.length + 1)(Seq.empty[Bool])
+      for ((c, wt) <- cols.zipWithIndex; g <- c.grouped(3)) g match {
+        case Seq(a, b, d) => nx(wt) :+= (a ^ b ^ d); nx(wt + 1) :+= ((a && b) || (a && d) || (b && d))
+        case Seq(a, b) => nx(wt) :+= (a ^ b); nx(wt + 1) :+= (a && b)
+        case Seq(a) => nx(wt) :+= a
+      }
+      cols = nx.toSeq.reverse.dropWhile(_.isEmpty).reverse
+    }
+    if (cols.isEmpty || cols.head.isEmpty) 0.U else Cat(cols.reverse.map(_.headOption.getOrElse(false.B)))
+  }
   // --- claims: the lanes take work from shared counters as they need it ---------------------
   // Units of buckets (coarse groups, or words) in order, several lanes a cycle; a unit that is
   // not one coarse chunk comes back deferred, and its buckets are then dealt one a cycle, before
@@ -452,6 +482,10 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     // Units to walk: the walked buckets'.
     val units = BucketSort.spans(walkBuckets, uLog2)
     val next = Reg(UInt((uW + log2Ceil(bp.lanes + 1)).W))
+    /** Units not yet granted, units - next: a unit lane's grant is then a compare of its small
+      * rank against it, with no add before the compare (next + count < units after the lanes'
+      * prefix counts was the broad phase's slowest path). */
+    val left = Reg(UInt(uW.W))
     val held = RegInit(VecInit(Seq.fill(bp.lanes)(false.B)))
     val heldUnit = RegInit(VecInit(Seq.fill(bp.lanes)(false.B))) // held, and a whole unit
     val grant = Reg(Vec(bp.lanes, UInt(w.W)))
@@ -461,41 +495,72 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val deferred = Mem(deferCap, UInt(uW.W))
     val dCount = Reg(UInt(log2Ceil(deferCap + 1).W))
     val dNext = Reg(UInt((log2Ceil(deferCap + 1) + uLog2).W)) // deferred buckets dealt
+    /** Deferred buckets not yet dealt, (dCount << uLog2) - dNext, and whether any is: a register,
+      * not a compare, ahead of the lanes' counts. */
+    val dRem = Reg(UInt((log2Ceil(deferCap + 1) + uLog2).W))
+    val dLeft = RegInit(false.B)
     for ((g, h) <- gens.zip(held)) when(g.io.take.get) { h := false.B }
     // One deferral accepted a cycle, the lowest lane's.
     val defers = VecInit(gens.map(_.io.defer.get.valid))
     val dLane = PriorityEncoderOH(defers.asUInt)
     for ((g, l) <- gens.zipWithIndex) g.io.deferOk.get := dLane(l)
-    when(defers.asUInt.orR) {
+    val deferNow = defers.asUInt.orR
+    when(deferNow) {
       deferred.write(dCount, Mux1H(dLane, gens.map(_.io.defer.get.bits >> uLog2)))
       dCount := dCount + 1.U
     }
-    assert(!defers.asUInt.orR || dCount < deferCap.U, "BroadPhase: more deferred units than can hold more than a chunk")
-    // A lane that needs work and holds none gets some, a cycle later: the lowest such lane a
-    // deferred bucket if one is left, the others (in lane order) the next units.
-    val wants = VecInit(gens.zip(held).map { case (g, h) => g.io.need.get && !h })
-    val dLeft = dNext < (dCount << uLog2)
-    val toSingle = Mux(dLeft, PriorityEncoderOH(wants.asUInt), 0.U(bp.lanes.W))
-    val toUnit = wants.asUInt & ~toSingle
+    assert(!deferNow || dCount < deferCap.U, "BroadPhase: more deferred units than can hold more than a chunk")
+    assert(state =/= S.generate || !sent || dLeft === (dNext < (dCount << uLog2)), "BroadPhase: the deferred buckets left lost count")
+    // A lane that needs work and holds none gets some two cycles later (a cycle more than with
+    // one stage, which was the broad phase's slowest path), through two stages. Stage 1 (this cycle): the lowest such lane is dealt a deferred bucket if one is
+    // left, the others (in lane order) are ranked among those asking for units; the ranks are
+    // counted in gates (countBits), and registered (unitAsk, rank, asked) with the bucket read
+    // (dealt). Stage 2 (next cycle): lane l's unit is next + rank(l) if rank(l) < left, set into
+    // held and grant. A lane in stage 2 asks for nothing more until its claim is held (or refused).
+    val unitAsk = RegInit(VecInit(Seq.fill(bp.lanes)(false.B)))
+    val singleAsk = RegInit(VecInit(Seq.fill(bp.lanes)(false.B)))
+    val rankW = math.max(1, log2Ceil(bp.lanes))
+    val rank = Reg(Vec(bp.lanes, UInt(rankW.W)))
+    val asked = Reg(UInt(log2Ceil(bp.lanes + 1).W))
+    val dealt = Reg(UInt(w.W))
+    val wants = VecInit.tabulate(bp.lanes)(l => gens(l).io.need.get && !held(l) && !unitAsk(l) && !singleAsk(l))
+    val toSingle = VecInit.tabulate(bp.lanes)(l => dLeft && wants(l) && !wants.take(l).foldLeft(false.B)(_ || _))
+    val toUnit = VecInit.tabulate(bp.lanes)(l => wants(l) && !toSingle(l))
+    val single = dLeft && wants.asUInt.orR
     val dUnit = deferred.read(dNext >> uLog2)
     val dBucket = if (uLog2 == 0) dUnit else Cat(dUnit, dNext(uLog2 - 1, 0))
+    unitAsk := toUnit
+    singleAsk := toSingle
+    for (l <- 0 until bp.lanes) rank(l) := countBits(toUnit.take(l))
+    asked := countBits(toUnit)
+    when(single) { dealt := dBucket; dNext := dNext + 1.U }
+    dRem := dRem + Mux(deferNow, (1 << uLog2).U, 0.U) - single
+    // dRem's next value is not zero: written as compares against constants (LUTs, no carry chain).
+    dLeft := deferNow || dRem(dRem.getWidth - 1, 1).orR || (dRem === 1.U && !single)
     for (l <- 0 until bp.lanes) {
-      val at = next +& PopCount(toUnit(l, 0)) - 1.U
-      when(toSingle(l)) { held(l) := true.B; heldUnit(l) := false.B; grant(l) := dBucket; grantSingle(l) := true.B }
-      when(toUnit(l)) { held(l) := at < units; heldUnit(l) := at < units; grant(l) := at << uLog2; grantSingle(l) := false.B }
+      when(singleAsk(l)) { held(l) := true.B; heldUnit(l) := false.B; grant(l) := dealt; grantSingle(l) := true.B }
+      when(unitAsk(l)) {
+        val ok = rank(l) < left
+        held(l) := ok; heldUnit(l) := ok; grant(l) := (next + rank(l)) << uLog2; grantSingle(l) := false.B
+      }
       gens(l).io.claim.get.valid := held(l)
       gens(l).io.claim.get.bits.bucket := grant(l)
       gens(l).io.claim.get.bits.single := grantSingle(l)
     }
-    when(toSingle.orR) { dNext := dNext + 1.U }
-    val taken = next +& PopCount(toUnit)
-    next := Mux(taken > units, units, taken)
-    // Nothing left: every unit granted and resolved (walked, or deferred and every bucket dealt).
-    val out = next >= units && !dLeft && !gens.map(_.io.unresolved.get).reduce(_ || _) &&
+    val granted = Mux(asked > left, left, asked)
+    next := next + granted
+    left := left - granted
+    // Nothing left: every unit granted and resolved (walked, or deferred and every bucket dealt),
+    // and no deferred bucket on its way through stage 2 (a unit lane there gets one only while
+    // left is not zero).
+    val out = left === 0.U && !dLeft && !singleAsk.asUInt.orR && !gens.map(_.io.unresolved.get).reduce(_ || _) &&
       !heldUnit.zip(held).map { case (u, h) => u && h }.reduce(_ || _)
     gens.foreach(_.io.claimsOut.get := out)
     // A new grid: every claim dropped and the counts from zero (the lanes look the cycle after).
-    when(state =/= S.generate || !sent) { next := 0.U; dCount := 0.U; dNext := 0.U; held.foreach(_ := false.B) }
+    when(state =/= S.generate || !sent) {
+      next := 0.U; left := units; dCount := 0.U; dNext := 0.U; dRem := 0.U; dLeft := false.B
+      held.foreach(_ := false.B); unitAsk.foreach(_ := false.B); singleAsk.foreach(_ := false.B)
+    }
   }
   st.candidates := st.candidates + PopCount(io.pairs.map(_.fire))
   private def laneSum(f: CandidateGenerator => UInt): UInt = gens.map(f).reduce(_ +& _)(31, 0)

@@ -216,14 +216,18 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     val s1b = RegEnable(in.bits.bucket, fire)
     val s1scatter = RegEnable(in.bits.scatter, fire)
     val s1item = RegEnable(in.bits.item, fire)
-    // The word written the cycle before, for the read that was issued alongside it.
-    val fwdValid = RegNext(s1, false.B)
-    val fwdW = RegEnable(wordOf(s1b), s1)
-    val oldWord = Wire(Vec(perWord, UInt(countW.W)))
-    val old = oldWord(laneOf(s1b))
-    val newWord = flat((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, old + 1.U, oldWord(l))))
-    val fwdV = RegEnable(newWord, s1)
-    oldWord := lanes(Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd))
+    // The word written the cycle before, for the read that was issued alongside it: whether it
+    // is the same word is compared as the read is issued and registered (fwdHit), so the
+    // forwarding is a mux, not a compare, ahead of the counter's increment.
+    val fwdHit = RegNext(s1 && wordOf(in.bits.bucket) === wordOf(s1b), false.B)
+    val fwdV = Reg(UInt((perWord * countW).W))
+    val oldWord = lanes(Mux(fwdHit, fwdV, rd))
+    // The counter, picked from the read word and from the forwarded one apart and then between
+    // them (both selects run in parallel from registers and the RAM), incremented once.
+    val old = Mux(fwdHit, lanes(fwdV)(laneOf(s1b)), lanes(rd)(laneOf(s1b)))
+    val bumped = old + 1.U
+    val newWord = flat((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, bumped, oldWord(l))))
+    when(s1) { fwdV := newWord }
     countFires(p) := s1 && !s1scatter
     place(p).valid := s1 && s1scatter
     place(p).bits.pos := old(posW - 1, 0)
