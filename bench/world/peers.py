@@ -41,6 +41,7 @@ ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = [
     ("simd", "simd", [], "binary32"),
     ("grid, 1 thread", "grid", ["--threads", "1"], "binary32"),
+    ("grid, all threads", "grid", [], "binary32"),
     ("ode sap", "ode", ["--space", "sap"], "binary64"),
     ("ode hash", "ode", ["--space", "hash"], "binary64"),
     ("ode quadtree", "ode", ["--space", "quadtree"], "binary64"),
@@ -54,6 +55,11 @@ CONFIGS = [
     ("warp cuda:0", "warp", ["cuda:0"], "binary32"),
 ]
 NOT_MEASURED = "not measured"
+NOT_RUN = "not run"
+# Broad phases that grow much faster than the spheres here (65,536 uniform spheres: 0.9 s to
+# 67 s, where the tuned grid takes 4 ms): above --slow-cap spheres they are not run, and
+# their rows say so.
+SLOW = {"ode hash", "ode quadtree", "bullet sap", "fcl sap", "fcl hash"}
 ROW_KEYS = ["cloud", "spheres", "config", "repeat", "contacts", "candidates", "broad_ns", "narrow_ns", "finish_ns",
             "total_ns", "engine_ns", "engine_contacts", "only_engine", "only_exact", "broad_phase", "format", "sha256",
             "h2d_ns", "d2h_ns", "device"]
@@ -93,7 +99,7 @@ def uptime():
 
 def report(rows, out, cmd, start, end, note):
     ms = lambda ns: f"{float(ns) / 1e6:.3f}" if ns not in ("", NOT_MEASURED) else ("-" if ns == "" else ns)
-    measured = lambda r: r["total_ns"] != NOT_MEASURED
+    measured = lambda r: r["total_ns"] not in (NOT_MEASURED, NOT_RUN)
     lines = ["# Engines people use as world-mode backends, against ours", "",
              "`collide spheres` on the same spheres in the same run (docs/host.md, \"collide spheres\"):",
              "ODE's spaces with dCollide (binary64: ODE's own contacts); Bullet's and FCL's broad phases",
@@ -107,7 +113,9 @@ def report(rows, out, cmd, start, end, note):
              "`warp cpu` / `warp cuda:0`: bench/world/warp_world.py (Warp's hash grid + the binary32 test as",
              "Warp kernels, docs/host-world.md \"The Warp backend\"); broad, narrow and finish are its kernels,",
              "\"copies\" its host-to-device and device-to-host copies (not in the total); \"not measured\":",
-             "Warp saw no such device in this run. Every number: [peers.csv](peers.csv).", ""]
+             "Warp saw no such device in this run; \"not run\": a broad phase that grows much faster than the",
+             "spheres, above --slow-cap. Every number: [peers.csv](peers.csv); total time against spheres,",
+             "log-log: [peers.png](peers.png).", ""]
     for cloud in dict.fromkeys(r["cloud"] for r in rows):
         for n in dict.fromkeys(r["spheres"] for r in rows if r["cloud"] == cloud):
             rs = [r for r in rows if r["cloud"] == cloud and r["spheres"] == n]
@@ -121,7 +129,8 @@ def report(rows, out, cmd, start, end, note):
             for r in rs:
                 eng = f"{ms(r['engine_ns'])} | {r['only_engine']} / {r['only_exact']}" if r["engine_ns"] != "" else "| "
                 if not measured(r):
-                    lines.append(f"| {r['config']} | - | {NOT_MEASURED} | | | | | | | | | |")
+                    why = r["total_ns"] + (f" ({r['device']})" if r["total_ns"] == NOT_RUN else "")
+                    lines.append(f"| {r['config']} | - | {why} | | | | | | | | | |")
                     continue
                 copies = ms(float(r["h2d_ns"]) + float(r["d2h_ns"])) if r["h2d_ns"] != "" else ""
                 lines.append(f"| {r['config']} | {r['repeat']} | {ms(r['broad_ns'])} | {ms(r['narrow_ns'])} | "
@@ -146,8 +155,17 @@ def main(argv=None):
     ap.add_argument("--clouds", default="uniform,clustered-mixed")
     ap.add_argument("--config", action="append", default=[], metavar="NAME",
                     help="run only this config (repeatable, e.g. --config simd --config 'warp cpu'); default all")
+    ap.add_argument("--slow-cap", type=int, default=70000, metavar="N",
+                    help=f"run {', '.join(sorted(SLOW))} only on worlds of at most N spheres")
     ap.add_argument("--note", default="", help="a paragraph on the machine's state for the README")
+    ap.add_argument("--replot", action="store_true", help="only draw OUT/peers.png again from OUT/peers.csv")
     a = ap.parse_args(argv)
+    if a.replot:
+        try:
+            plot(list(csv.DictReader(open(Path(a.out) / "peers.csv", newline=""))), Path(a.out) / "peers.png")
+        except OSError as e:
+            ap.error(f"--replot: cannot read {Path(a.out) / 'peers.csv'}: {e.strerror}")
+        return 0
     configs = CONFIGS
     if a.config:
         unknown = [c for c in a.config if c not in {c[0] for c in CONFIGS}]
@@ -172,13 +190,19 @@ def main(argv=None):
                 world.write_cloud(path, world.cloud("uniform", n, a.seed) if cloud == "uniform" else grid.clustered_mixed(n, a.seed))
                 want = {}
                 for config, backend, opts, kind in configs:
+                    if config in SLOW and n > a.slow_cap:
+                        rows.append({**dict.fromkeys(ROW_KEYS, ""), "cloud": cloud, "spheres": n, "config": config,
+                                     **dict.fromkeys(("broad_ns", "narrow_ns", "finish_ns", "total_ns"), NOT_RUN),
+                                     "device": f"above --slow-cap {a.slow_cap}"})
+                        print(f"{cloud:15} {n:7} {config:17} {NOT_RUN} (above --slow-cap {a.slow_cap})", flush=True)
+                        continue
                     if backend == "warp" and opts[0].startswith("cuda") and cuda == 0:
                         rows.append({**dict.fromkeys(ROW_KEYS, ""), "cloud": cloud, "spheres": n,
                                      "config": config, "repeat": "", "broad_ns": NOT_MEASURED, "narrow_ns": NOT_MEASURED,
                                      "finish_ns": NOT_MEASURED, "total_ns": NOT_MEASURED, "h2d_ns": NOT_MEASURED,
                                      "d2h_ns": NOT_MEASURED, "broad_phase": "warp HashGrid", "format": "binary32",
                                      "device": f"{opts[0]} (Warp saw no CUDA device)"})
-                        print(f"{cloud:15} {n:6} {config:15} {NOT_MEASURED} (no CUDA device)", flush=True)
+                        print(f"{cloud:15} {n:7} {config:17} {NOT_MEASURED} (no CUDA device)", flush=True)
                         continue
                     once = (lambda rep: run_warp(path, opts[0], rep, work)) if backend == "warp" else \
                         (lambda rep: world.run(a.collide, path, backend, None, rep, work, opts))
@@ -200,7 +224,7 @@ def main(argv=None):
                            "h2d_ns": s.get("h2d_ns", ""), "d2h_ns": s.get("d2h_ns", ""),
                            "device": s.get("device_name", "CPU") if backend == "warp" else "CPU"}
                     rows.append(row)
-                    print(f"{cloud:15} {n:6} {config:15} x{repeat} total {row['total_ns'] / 1e6:9.3f} ms  (broad "
+                    print(f"{cloud:15} {n:7} {config:17} x{repeat} total {row['total_ns'] / 1e6:9.3f} ms  (broad "
                           f"{s['broad_ns'] / 1e6:.3f}, narrow {s['narrow_ns'] / 1e6:.3f}, finish {s['finish_ns'] / 1e6:.3f})",
                           flush=True)
     with open(out / "peers.csv", "w", newline="") as f:
@@ -208,7 +232,30 @@ def main(argv=None):
         w.writeheader()
         w.writerows(rows)
     report(rows, out, cmd.strip(), start, f"`uptime`: {uptime()}", a.note)
+    plot(rows, out / "peers.png")
     return 0
+
+
+def plot(rows, path):
+    """Total time against spheres, log-log, a panel per cloud and a line per config."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    clouds = list(dict.fromkeys(r["cloud"] for r in rows))
+    fig, axes = plt.subplots(1, len(clouds), figsize=(6.5 * len(clouds), 5), squeeze=False, sharey=True)
+    for ax, cloud in zip(axes[0], clouds):
+        for k, config in enumerate(dict.fromkeys(r["config"] for r in rows)):
+            pts = sorted((int(r["spheres"]), float(r["total_ns"]) / 1e6) for r in rows
+                         if r["cloud"] == cloud and r["config"] == config and r["total_ns"] not in (NOT_MEASURED, NOT_RUN))
+            if pts:
+                ax.plot(*zip(*pts), marker="osD^v<>"[k % 7], color=plt.cm.tab20(k % 20), label=config)
+        ax.set(xscale="log", yscale="log", xlabel="spheres", title=cloud)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0][0].set_ylabel("total time, ms (fastest of N)")
+    axes[0][-1].legend(fontsize=8, loc="upper left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":
