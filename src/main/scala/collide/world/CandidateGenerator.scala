@@ -412,7 +412,6 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val idx = li +& lj
       when(lj =/= chunk.U && idx < io.largeCount) {
         matcher.io.load.valid := true.B
-        matcher.io.load.bits := ChunkMember(io.larges(VecIndex(idx, largeSlots)), 0.U)
         lj := lj + 1.U
       }.otherwise {
         state := S.largeStream; sent := false.B
@@ -442,7 +441,6 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     when(it.tag.scan) {
       // A coarse chunk's cells are those of its base's coarse cell: compared with low bits clear.
       val base = VecInit(it.rec.cell.map(c => Mux(coarseCh, Cat(c(cellBits - 1, 1), 0.U(1.W)).asSInt, c)))
-      val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
       val same = base.asUInt === curCell.asUInt
       val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
       // With scanPairs, an entry a coarse chunk takes also meets the members loaded before it
@@ -460,7 +458,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         scanLeft := scanLeft - 1.U
         when(needClear) { matcher.io.clear := true.B; needClear := false.B }
         when(take) {
-          matcher.io.load.valid := true.B; matcher.io.load.bits := ChunkMember(WorldKey(itemW, it.item, it.rec), place)
+          matcher.io.load.valid := true.B
           io.mark.valid := true.B
           loaded := loaded + 1.U
           when(!haveCell) { curCell := base; haveCell := true.B }
@@ -475,6 +473,16 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       stream.io.out.ready := matcher.io.in.ready
       when(stream.io.out.fire) { probes := probes + 1.U }
     }
+  }
+
+  // What the matcher loads: a large sphere in the large pass, else the stream's entry (a scan
+  // entry, at its place in a coarse chunk), chosen by the state alone, so that the members'
+  // box additions do not wait on the scan's take (the stream's ready and the compares).
+  {
+    val it = stream.io.out.bits
+    val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
+    matcher.io.load.bits := Mux(state === S.largeLoad,
+      ChunkMember(io.larges(VecIndex(li +& lj, largeSlots)), 0.U), ChunkMember(WorldKey(itemW, it.item, it.rec), place))
   }
 
   // What each grid cycle went to: an entry through the stream, or why none went.
