@@ -228,7 +228,22 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   // is in flight and another is issued (visits of one entry or none follow each other at a
   // cycle each); more let the lookups run ahead through a visit of many entries, for the
   // run of short and empty ones after it (a visit's lookup takes a cycle, empty or not).
-  private val lkq = Module(new Queue(new StreamRange(visitT, countW, groups), lookAhead))
+  // The visits' lookups run in three stages so that no path goes from vIssue through the
+  // offsets, the adds and the hash to the table's address (CellHash, with box buckets two
+  // multiplies): `lkCell` (registered so the hash starts from a register, not from vIssue's
+  // offset and the adds) holds the neighbour cell issued the cycle before; `lkHash`
+  // (registered so the address leaving the block comes from a register) its bucket, the
+  // table's address this cycle; `lkPend` marks the lookup whose ends come back now. The two
+  // stages before `lkPend` add two ranges in flight, so the queue is two deeper and the
+  // look-ahead check counts them: as many ranges are queued ahead as without them.
+  private val lkStages = 2
+  private val lkCellV = RegInit(false.B)
+  private val lkCell = Reg(visitT)
+  private val lkHashV = RegInit(false.B)
+  private val lkHash = Reg(chiselTypeOf(io.lookup.bucket))
+  private val lkHashVisit = Reg(visitT)
+  private val lkInFlight = lkCellV.asUInt +& lkHashV.asUInt +& lkPend.asUInt
+  private val lkq = Module(new Queue(new StreamRange(visitT, countW, groups), lookAhead + lkStages))
   lkq.io.enq.valid := false.B
   lkq.io.enq.bits := DontCare
   lkq.io.deq.ready := false.B
@@ -240,6 +255,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     * first scan entry clears the matcher once their hits have left. */
   private def startChunk(): Unit = {
     state := S.chunk; sent := false.B; vIssue := 0.U; lkPend := false.B; needClear := true.B
+    lkCellV := false.B; lkHashV := false.B
   }
   private def startLargePass(): Unit = {
     li := 0.U; lj := 0.U; matcher.io.clear := true.B
@@ -347,11 +363,20 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
 
       val off = offsets(VecIndex(Mux(coarseCh, fineVisits.length.U +& vIssue, vIssue), offsets.length))
       val nc = VecInit((0 until 3).map(a => curCell(a) + off(a)))
-      val canIssue = haveCell && vIssue =/= visitCount && (lkq.io.count +& lkPend.asUInt) < lookAhead.U
-      io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2, coarse, io.box)
-      lkPend := canIssue
-      lkVisit.cell := nc; lkVisit.off := off; lkVisit.scan := false.B
+      // Every range in flight may end up queued: issue only while the queue has room for them all.
+      val canIssue = haveCell && vIssue =/= visitCount && (lkq.io.count +& lkInFlight) < (lookAhead + lkStages).U
       when(canIssue) { vIssue := vIssue + 1.U }
+      // Stage 1: the neighbour cell and its offset.
+      lkCellV := canIssue
+      lkCell.cell := nc; lkCell.off := off; lkCell.scan := false.B
+      // Stage 2: its bucket, from the registered cell.
+      lkHashV := lkCellV
+      lkHash := CellHash(lkCell.cell, bucketsLog2, io.usedLog2, coarse, io.box)
+      lkHashVisit := lkCell
+      // Stage 3: the registered bucket is the table's address; its ends come back the cycle after.
+      io.lookup.bucket := lkHash
+      lkPend := lkHashV
+      lkVisit := lkHashVisit
       // A visit whose bucket is empty in every group is not queued: the stream would spend a
       // cycle accepting it, and a uniform cloud's coarse chunk has a dozen of its 43 visits empty.
       val lkEmpty = (0 until groups).map(g => io.lookup.begin(g) === io.lookup.end(g)).reduce(_ && _)
@@ -361,7 +386,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
 
       // Every range handed to the stream and the scan's entries all seen: the next chunk of
       // this bucket can start its scan behind the visits still streaming.
-      val visitsIssued = vIssue === visitCount && !lkPend && !lkq.io.deq.valid
+      val visitsIssued = vIssue === visitCount && !lkCellV && !lkHashV && !lkPend && !lkq.io.deq.valid
       val scanDone = sent && scanLeft === 0.U
       when(visitsIssued && scanDone) {
         when(moreOfCell || nextSet) {
@@ -387,7 +412,6 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val idx = li +& lj
       when(lj =/= chunk.U && idx < io.largeCount) {
         matcher.io.load.valid := true.B
-        matcher.io.load.bits := ChunkMember(io.larges(VecIndex(idx, largeSlots)), 0.U)
         lj := lj + 1.U
       }.otherwise {
         state := S.largeStream; sent := false.B
@@ -417,7 +441,6 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     when(it.tag.scan) {
       // A coarse chunk's cells are those of its base's coarse cell: compared with low bits clear.
       val base = VecInit(it.rec.cell.map(c => Mux(coarseCh, Cat(c(cellBits - 1, 1), 0.U(1.W)).asSInt, c)))
-      val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
       val same = base.asUInt === curCell.asUInt
       val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
       // With scanPairs, an entry a coarse chunk takes also meets the members loaded before it
@@ -435,7 +458,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         scanLeft := scanLeft - 1.U
         when(needClear) { matcher.io.clear := true.B; needClear := false.B }
         when(take) {
-          matcher.io.load.valid := true.B; matcher.io.load.bits := ChunkMember(WorldKey(itemW, it.item, it.rec), place)
+          matcher.io.load.valid := true.B
           io.mark.valid := true.B
           loaded := loaded + 1.U
           when(!haveCell) { curCell := base; haveCell := true.B }
@@ -450,6 +473,16 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       stream.io.out.ready := matcher.io.in.ready
       when(stream.io.out.fire) { probes := probes + 1.U }
     }
+  }
+
+  // What the matcher loads: a large sphere in the large pass, else the stream's entry (a scan
+  // entry, at its place in a coarse chunk), chosen by the state alone, so that the members'
+  // box additions do not wait on the scan's take (the stream's ready and the compares).
+  {
+    val it = stream.io.out.bits
+    val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
+    matcher.io.load.bits := Mux(state === S.largeLoad,
+      ChunkMember(io.larges(VecIndex(li +& lj, largeSlots)), 0.U), ChunkMember(WorldKey(itemW, it.item, it.rec), place))
   }
 
   // What each grid cycle went to: an entry through the stream, or why none went.

@@ -117,10 +117,31 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     Mux(zero.reduce(_ && _), later, half)
   }
 
-  private val probe = io.in.bits
+  // With a hit queue, a probe is compared the cycle after it is taken: the probe, its box
+  // widened by the slack and the members loaded so far are registered (`st*`), so neither
+  // path, the box's additions from the streamed entry nor the compares into the hit queue,
+  // follows the other in one cycle. The members compared are the first `stUsed`, those loaded
+  // before the probe was taken: a load in its cycle (a coarse chunk's scan pairs) writes a
+  // later slot, and nothing clears in that cycle (a clear comes with a scan entry or an idle
+  // stream, never with a probe). Without a queue the comparison stays in the taking cycle.
+  private val staged = hitQueue > 0
+  private val inBox = ChunkMatcher.box(io.in.bits.key, Some(io.slack))
+  private val inNear = ChunkMatcher.nearBox(io.in.bits.key, Some(io.slack), nearBits max 1)
+  private val stV = RegInit(false.B)
+  private val stProbe = Reg(chiselTypeOf(io.in.bits))
+  private val stBox = Reg(chiselTypeOf(inBox))
+  private val stNear = Reg(chiselTypeOf(inNear))
+  private val stUsed = Reg(chiselTypeOf(used))
+  if (staged) {
+    stV := io.in.fire
+    when(io.in.fire) { stProbe := io.in.bits; stBox := inBox; stNear := inNear; stUsed := used }
+    assert(!(io.in.fire && io.clear), "ChunkMatcher: a probe taken in a clear's cycle")
+  }
+  private val probe = if (staged) stProbe else io.in.bits
   private val e = probe.key
-  private val probeBox = ChunkMatcher.box(e, Some(io.slack))
-  private val probeNear = ChunkMatcher.nearBox(e, Some(io.slack), nearBits max 1)
+  private val probeBox = if (staged) stBox else inBox
+  private val probeNear = if (staged) stNear else inNear
+  private val usedAt = if (staged) stUsed else used
   /** The near filter: hi_p - lo_m >= 0 and hi_m - lo_p >= 0 by their signs modulo 2^nearBits. */
   private def nearPass(a: ChunkMatcher.NearBox, b: ChunkMatcher.NearBox): Bool =
     (0 until 3).map(ax => !(b.hi(ax) -% a.lo(ax))(nearBits - 1) && !(a.hi(ax) -% b.lo(ax))(nearBits - 1)).reduce(_ && _)
@@ -129,7 +150,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     val mem = members(m)
     val later = e.index > memberIndex(cur, m.U)
     val takes = Mux(probe.anyCell, !probe.own || later, inCell && owns(mem.place, probe.off, later))
-    m.U < used && takes && (if (m < wideSlots) boxPass(wideBoxes(m), probeBox) else nearPass(nearBoxes(m - wideSlots), probeNear))
+    m.U < usedAt && takes && (if (m < wideSlots) boxPass(wideBoxes(m), probeBox) else nearPass(nearBoxes(m - wideSlots), probeNear))
   }).asUInt
 
   // The streamed sphere being drained (its index) and the hits it still owes.
@@ -159,14 +180,20 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     // Only spheres with a hit are queued; the comparators' result never reaches in.ready
     // (a long path), so a full queue stops the stream even for a sphere without one.
     class Hits extends Bundle { val mask = UInt(chunk.W); val index = UInt(itemW.W); val bank = Bool() }
-    val q = Module(new Queue(new Hits, hitQueue))
-    io.in.ready := q.io.enq.ready
-    q.io.enq.valid := io.in.valid && hitsNow.orR
+    // One more entry for the probe being compared: it is taken only while the queue has room
+    // for it after the one before, so `hitQueue` spheres' hits still wait as without the stage.
+    val q = Module(new Queue(new Hits, hitQueue + 1))
+    // The queue's count, mirrored in a register of our own: the Queue's (a difference of its
+    // pointers, hitQueue + 1 not a power of two) was a long path into in.ready.
+    val held = RegInit(0.U(log2Ceil(hitQueue + 2).W))
+    held := held + q.io.enq.fire.asUInt - q.io.deq.fire.asUInt
+    io.in.ready := (held +& stV.asUInt) <= hitQueue.U
+    q.io.enq.valid := stV && hitsNow.orR
     q.io.enq.bits.mask := hitsNow; q.io.enq.bits.index := e.index; q.io.enq.bits.bank := cur
     q.io.deq.ready := free
     pending := Mux(q.io.deq.fire, q.io.deq.bits.mask, drained)
     when(q.io.deq.fire) { entry := q.io.deq.bits.index; pendBank := q.io.deq.bits.bank }
-    io.idle := !pending.orR && !q.io.deq.valid
+    io.idle := !pending.orR && !q.io.deq.valid && !stV
     oldQueued := q.io.deq.valid && q.io.deq.bits.bank =/= cur
   }
   io.canClear := (if (drainBehind) !pendOld && !oldQueued else io.idle)

@@ -81,23 +81,36 @@ class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidt
   private val kv = Seq.fill(keyLatency)(RegInit(false.B))
   private val ks = Seq.fill(keyLatency)(Reg(new StreamKeyStage(tag, itemW, countW, groups)))
 
-  private val inFlight = (s1v +: kv).map(_.asUInt).reduce(_ +& _)
-  private val room = q.io.count +& inFlight < depth.U
+  // What is queued or in flight (the queue's count plus every stage's valid), kept as one
+  // register: adding them up each cycle was a long path through `room` into req.ready.
+  private val used = RegInit(0.U(log2Ceil(depth + 1).W))
+  private val room = used < depth.U
   private val issue = busy && room
-  private val left = VecInit.tabulate(groups)(g => cur.begin(g) =/= cur.end(g))
+  used := used + issue.asUInt - q.io.deq.fire.asUInt
+  // Per group, registered as cur changes (so req.ready does not wait on compares of cur):
+  // positions left (cur.begin =/= cur.end), and exactly one left (cur.begin + 1 === cur.end).
+  private val left = Reg(Vec(groups, Bool()))
+  private val single = Reg(Vec(groups, Bool()))
   // The group read from: the first with positions left (group 1 once group 0's run is done).
   private val g = if (groups == 1) 0.U(1.W) else PriorityEncoder(left.asUInt)
   private val at = if (groups == 1) cur.begin(0) else cur.begin(g)
   private val moreAfter =
-    if (groups == 1) at + 1.U =/= cur.end(0)
-    else at + 1.U =/= cur.end(g) || (0 until groups).map(h => left(h) && h.U > g).reduce(_ || _)
+    if (groups == 1) !single(0)
+    else !single(g) || (0 until groups).map(h => left(h) && h.U > g).reduce(_ || _)
   private val last = issue && !moreAfter
   io.req.ready := !busy || last
   when(issue) { if (groups == 1) cur.begin(0) := at + 1.U else cur.begin(g) := at + 1.U }
+  for (h <- 0 until groups) when(issue && g === h.U) {
+    left(h) := !single(h); single(h) := cur.begin(h) + 2.U === cur.end(h)
+  }
   when(last) { busy := false.B }
   when(io.req.fire) {
     cur := io.req.bits
     busy := (0 until groups).map(q => io.req.bits.begin(q) =/= io.req.bits.end(q)).reduce(_ || _)
+    for (h <- 0 until groups) {
+      left(h) := io.req.bits.begin(h) =/= io.req.bits.end(h)
+      single(h) := io.req.bits.begin(h) + 1.U === io.req.bits.end(h)
+    }
   }
 
   io.entryAddr := at(itemW - 1, 0)
