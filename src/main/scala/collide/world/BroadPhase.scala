@@ -250,9 +250,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val boxMap = Reg(new BoxMapBits(unitBits, tableLog2))
   private val boxExtent = RegInit(VecInit(Seq.fill(3)(0.U(BoxMapBits.extentW.W))))
   /** The corners' keys come keysLatency cycles into state box, after the trackers' merge has
-    * settled; the map takes three more. */
+    * settled; the map takes BroadPhase.boxSteps more. */
   private val boxFirst = BoxTracker.mergeLatency(bp.lanes) + keysLatency
-  private val boxCycle = RegInit(0.U(log2Ceil(boxFirst + 3).W))
+  private val boxCycle = RegInit(0.U(log2Ceil(boxFirst + BroadPhase.boxSteps).W))
   /** The box's map is final: classify may start. */
   private val boxDone = WireDefault(true.B)
   /** Buckets in use: 2^usedLog2. */
@@ -287,40 +287,63 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       k.io.out.cell.map(c => if (bp.coarseChunks) c >> 1 else c)
     }
     // Extents in units (at least one: hi >= lo), exact in a cell's width plus one.
-    val extent = VecInit.tabulate(3)(a => (corners(1)(a) -& corners(0)(a) +& 1.S).asUInt)
-    // For the fit only, each extent saturated past the table (its places would not fit anyway).
+    // The map takes boxSteps cycles after the corners come, one operation a cycle between
+    // registers (an extent; its saturation and the factors; each multiply alone, as a DSP
+    // block with registered operands is most of a 5 ns cycle; the sum; the words; the compare).
+    val extent = Reg(Vec(3, UInt((unitBits + 2).W)))
+    val origin = Reg(Vec(3, SInt(unitBits.W)))
     val satW = tableLog2 + 2
-    val sat = Reg(Vec(3, UInt(satW.W)))
-    val places = Reg(UInt((3 * satW + 2).W))
-    val placesXY = Reg(UInt((2 * satW + 2).W)) // (x + 1)(y + 1), a cycle before places
+    val sat0p2 = Reg(UInt((satW + 1).W))
+    val factX = Reg(UInt((satW + 1).W)) // sat(0) + 1
+    val factY = Reg(UInt((satW + 1).W)) // sat(1) + 1
+    val factZ = Reg(UInt((satW + 1).W)) // sat(2) + 2
+    // Places from 2^satW up cannot fit the table: past a product's low satW bits only "big" is
+    // kept (an OR, no carry chain), so the sum and the compares after it are satW bits wide.
+    val placesXY = Reg(UInt((2 * satW + 2).W))
+    val placesP = Reg(UInt((2 * satW + 1).W))
+    val places = Reg(UInt((satW + 2).W))
+    val big = Reg(Bool())
+    val words = Reg(UInt((satW + 2 + (if (bp.coarseChunks) 3 else 0)).W))
+    val fits = Reg(Bool())
     val groupLog2 = if (bp.coarseChunks) 3 else 0
     val hashBits = if (bp.coarseChunks) Mux(usedLog2 > 3.U, usedLog2 - 3.U, 0.U) else usedLog2
     val perWord = 1 << wordLog2
-    boxDone := boxCycle === (boxFirst + 2).U
+    def at(k: Int): Bool = boxCycle === (boxFirst + k).U
+    boxDone := at(BroadPhase.boxSteps - 1)
     when(state === S.box) {
       boxCycle := boxCycle + 1.U
-      when(boxCycle === boxFirst.U) {
-        for (a <- 0 until 3) boxMap.origin(a) := corners(0)(a) - 1.S
-        boxMap.rx := (extent(0) + 1.U)(tableLog2 - 1, 0)
-        boxMap.rxy := (extent(1) + 1.U)(tableLog2 - 1, 0) // times rx next cycle
-        val most = ((1 << BoxMapBits.extentW) - 1).U
-        val satNow = extent.map(e => Mux(e >= (1 << (tableLog2 + 1)).U, (1 << (tableLog2 + 1)).U, e)(satW - 1, 0))
+      when(at(0)) {
         for (a <- 0 until 3) {
-          boxExtent(a) := Mux(anyBox, Mux(extent(a) >= most, most, extent(a)), 0.U)
-          sat(a) := satNow(a)
+          extent(a) := (corners(1)(a) -& corners(0)(a) +& 1.S).asUInt
+          origin(a) := corners(0)(a) - 1.S
         }
-        // The places' first product now, the second next cycle: one multiply a cycle (two
-        // chained were the broad phase's own slowest path, docs/afu.md "Timing").
-        placesXY := (satNow(0) +& 1.U) * (satNow(1) +& 1.U)
       }
-      when(boxCycle === (boxFirst + 1).U) {
+      when(at(1)) {
+        boxMap.origin := origin
+        boxMap.rx := (extent(0) + 1.U)(tableLog2 - 1, 0)
+        boxMap.rxy := (extent(1) + 1.U)(tableLog2 - 1, 0) // times rx two cycles on
+        val most = ((1 << BoxMapBits.extentW) - 1).U
+        // For the fit only, each extent saturated past the table (its places would not fit anyway).
+        val sat = extent.map(e => Mux(e >= (1 << (tableLog2 + 1)).U, (1 << (tableLog2 + 1)).U, e)(satW - 1, 0))
+        for (a <- 0 until 3) boxExtent(a) := Mux(anyBox, Mux(extent(a) >= most, most, extent(a)), 0.U)
+        factX := sat(0) +& 1.U; factY := sat(1) +& 1.U; factZ := sat(2) +& 2.U; sat0p2 := sat(0) +& 2.U
+      }
+      when(at(2)) { placesXY := factX * factY }
+      when(at(3)) {
         boxMap.rxy := (boxMap.rxy * boxMap.rx)(tableLog2 - 1, 0)
-        places := placesXY * (sat(2) +& 2.U) + sat(0) + 2.U
+        big := placesXY(placesXY.getWidth - 1, satW).orR
+        placesP := placesXY(satW - 1, 0) * factZ
       }
-      when(boxCycle === (boxFirst + 2).U) {
+      when(at(4)) {
+        big := big || placesP(placesP.getWidth - 1, satW).orR
+        places := placesP(satW - 1, 0) +& sat0p2
+      }
+      when(at(5)) {
         // The places' buckets rounded up to a word, where they fit the buckets in use.
-        val fits = anyBox && places <= (1.U((tableLog2 + 1).W) << hashBits)
-        val words = ((places << groupLog2) + (perWord - 1).U) >> wordLog2
+        fits := anyBox && !big && places <= (1.U((tableLog2 + 1).W) << hashBits)
+        words := ((places << groupLog2) + (perWord - 1).U) >> wordLog2
+      }
+      when(at(6)) {
         when(fits && (words << wordLog2) < used) { walkBuckets := words << wordLog2 }
         boxCycle := 0.U
       }
@@ -667,4 +690,10 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
   }
   io.status := st
+}
+
+object BroadPhase {
+  /** Cycles of state box after the corners' keys come (box buckets): the box's map, an
+    * operation a cycle (BroadPhase's box map). */
+  val boxSteps: Int = 7
 }

@@ -107,13 +107,13 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
       // A fed table's level is chosen as it arrives: after start only the last spheres' keys and
       // the merge of the fed lanes' needs remain, and, if the clear (a word a cycle, from the
       // begin, or from the end of the world before for one begun ahead) had fewer cycles before
-      // start, the rest of it; with box buckets the trackers' merge, the corners' keys and three
-      // cycles for the box's map. Reading the table again would take num / lanes.
+      // start, the rest of it; with box buckets the trackers' merge, the corners' keys and
+      // BroadPhase.boxSteps cycles for the box's map. Reading the table again would take num / lanes.
       val feedWidth = dut.io.feed.length
       val merge = if (model.bp.lanes > 1) (feedWidth * (model.bp.largeMax + 1) + 1) / 2 else 0
       val clearLeft = math.max(0L, words - got.status("feedCycles").toLong)
       val keys = dut.keysLatency
-      val box = if (model.bp.boxBuckets) BoxTracker.mergeLatency(model.bp.lanes) + keys + 3 else 0
+      val box = if (model.bp.boxBuckets) BoxTracker.mergeLatency(model.bp.lanes) + keys + BroadPhase.boxSteps else 0
       val most = merge + clearLeft + keys + 3 + CellExponent.levelLatency + box
       assert(got.status("cycLoad") <= most, s"$where: ${got.status("cycLoad")} load cycles after a fed table, at most $most " +
         s"(${got.status("feedCycles")} cycles of feed)")
