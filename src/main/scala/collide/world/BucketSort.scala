@@ -222,11 +222,12 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     val fwdHit = RegNext(s1 && wordOf(in.bits.bucket) === wordOf(s1b), false.B)
     val fwdV = Reg(UInt((perWord * countW).W))
     val oldWord = lanes(Mux(fwdHit, fwdV, rd))
-    // The counter, picked from the read word and from the forwarded one apart and then between
-    // them (both selects run in parallel from registers and the RAM), incremented once.
+    // The counter, for the scatter's place: picked from the read word and from the forwarded
+    // one apart and then between them (both selects run in parallel from registers and the RAM).
     val old = Mux(fwdHit, lanes(fwdV)(laneOf(s1b)), lanes(rd)(laneOf(s1b)))
-    val bumped = old + 1.U
-    val newWord = flat((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, bumped, oldWord(l))))
+    // Every counter of the word incremented in parallel and the bucket's kept: no select of the
+    // counter ahead of the increment, which was the sort's slowest path (an adder a counter).
+    val newWord = flat((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, oldWord(l) + 1.U, oldWord(l))))
     when(s1) { fwdV := newWord }
     countFires(p) := s1 && !s1scatter
     place(p).valid := s1 && s1scatter
