@@ -44,7 +44,7 @@ def parser():
                    help="local: on this machine (default); slurm: sbatch job arrays")
     r.add_argument("--jobs", type=int, default=len(os.sched_getaffinity(0)),  # the cores this process may use
                    help="local: steps run at once (default: the core count, %(default)s here)")
-    s = r.add_argument_group("slurm (with --executor slurm; bench/README.md, \"On a Slurm cluster\")")
+    s = r.add_argument_group("slurm (with --executor slurm; bench/slurm.md)")
     s.add_argument("--partition", help="sbatch --partition (default: the cluster's default partition)")
     s.add_argument("--account", help="sbatch --account")
     s.add_argument("--time", help="time limit of every job, replacing the per-step defaults (e.g. 4:00:00)")

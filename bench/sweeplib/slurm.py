@@ -19,7 +19,7 @@ from progress import Bar
 from tasks import KINDS, Records, node
 
 # (kind, size) -> (CPUs, memory, time limit) of a task: estimates from the steps' costs on
-# a 2-core machine (bench/README.md, "What each stage costs") with room to spare; sbt runs
+# a 2-core machine (bench/slurm.md, "What each stage costs") with room to spare; sbt runs
 # with -Xmx4g. --cpus-per-task, --mem and --time replace them for every job.
 RESOURCES = {
     ("generate", "normal"): (2, "6G", "1:00:00"),
