@@ -90,6 +90,13 @@ def run_warp(path, device, repeat, work):
     return s
 
 
+def skipped(rows, cloud, n, config, what, why, **fields):
+    """A config this run did not time: its row says `what` in place of every time, and why."""
+    rows.append({**dict.fromkeys(ROW_KEYS, ""), "cloud": cloud, "spheres": n, "config": config,
+                 **dict.fromkeys(("broad_ns", "narrow_ns", "finish_ns", "total_ns"), what), **fields})
+    print(f"{cloud:15} {n:7} {config:17} {what} ({why})", flush=True)
+
+
 def uptime():
     try:
         return subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip()
@@ -191,18 +198,13 @@ def main(argv=None):
                 want = {}
                 for config, backend, opts, kind in configs:
                     if config in SLOW and n > a.slow_cap:
-                        rows.append({**dict.fromkeys(ROW_KEYS, ""), "cloud": cloud, "spheres": n, "config": config,
-                                     **dict.fromkeys(("broad_ns", "narrow_ns", "finish_ns", "total_ns"), NOT_RUN),
-                                     "device": f"above --slow-cap {a.slow_cap}"})
-                        print(f"{cloud:15} {n:7} {config:17} {NOT_RUN} (above --slow-cap {a.slow_cap})", flush=True)
+                        skipped(rows, cloud, n, config, NOT_RUN, f"above --slow-cap {a.slow_cap}",
+                                device=f"above --slow-cap {a.slow_cap}")
                         continue
                     if backend == "warp" and opts[0].startswith("cuda") and cuda == 0:
-                        rows.append({**dict.fromkeys(ROW_KEYS, ""), "cloud": cloud, "spheres": n,
-                                     "config": config, "repeat": "", "broad_ns": NOT_MEASURED, "narrow_ns": NOT_MEASURED,
-                                     "finish_ns": NOT_MEASURED, "total_ns": NOT_MEASURED, "h2d_ns": NOT_MEASURED,
-                                     "d2h_ns": NOT_MEASURED, "broad_phase": "warp HashGrid", "format": "binary32",
-                                     "device": f"{opts[0]} (Warp saw no CUDA device)"})
-                        print(f"{cloud:15} {n:7} {config:17} {NOT_MEASURED} (no CUDA device)", flush=True)
+                        skipped(rows, cloud, n, config, NOT_MEASURED, "no CUDA device", h2d_ns=NOT_MEASURED,
+                                d2h_ns=NOT_MEASURED, broad_phase="warp HashGrid", format="binary32",
+                                device=f"{opts[0]} (Warp saw no CUDA device)")
                         continue
                     once = (lambda rep: run_warp(path, opts[0], rep, work)) if backend == "warp" else \
                         (lambda rep: world.run(a.collide, path, backend, None, rep, work, opts))
