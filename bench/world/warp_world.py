@@ -184,10 +184,15 @@ def write_contacts(path, i, j, values, flags, bad, bad_flags):
 
 # --- kernels -------------------------------------------------------------------------------
 
+# host/world/engine_broad_phase.hpp's reach: r (1 + 2^-20) + 2^-60, in binary64; the kernels'
+# reach and the host's (reach_f64, which sizes the grid's cells and queries) share these.
+REACH_SCALE = 1.0 + 2.0 ** -20
+REACH_PAD = 2.0 ** -60
+
+
 @wp.func
 def reach(r: wp.float64):
-    # host/world/engine_broad_phase.hpp: r (1 + 2^-20) + 2^-60, in binary64
-    return r * wp.float64(1.0000009536743164) + wp.float64(8.673617379884035e-19)
+    return r * wp.float64(REACH_SCALE) + wp.float64(REACH_PAD)
 
 
 @wp.func
@@ -317,7 +322,7 @@ KERNELS_MODULE = sys.modules[__name__]
 # --- one collision -------------------------------------------------------------------------
 
 def reach_f64(r):
-    return r * (1.0 + 2.0 ** -20) + 2.0 ** -60
+    return r * REACH_SCALE + REACH_PAD
 
 
 def grid_dims(n):
