@@ -2,6 +2,7 @@ package collide.world
 
 import chisel3._
 import chisel3.util._
+import collide.util.Tree
 import collide.fp.{FpParams, Pipeline}
 
 /** What a world's run of the broad phase found and what it cost, valid once busy falls. */
@@ -175,19 +176,32 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val st = RegInit(0.U.asTypeOf(new BroadPhaseStatus(kWidth, countW)))
   private val largeCount = RegInit(0.U(log2Ceil(largeSlots + 1).W))
 
-  /** log2 of BroadPhaseModel.bucketsFor(n): the least t with 2^t >= n 2^bucketsPerSphereLog2,
-    * capped at the table. */
-  private def bucketsLog2For(n: UInt): UInt = {
-    val ceilLog2 = BoxTracker.bitsFor(n) // ceil(log2 n), 0 for n <= 1
-    val t = Mux(n === 0.U, 0.U, ceilLog2 +& bp.bucketsPerSphereLog2.U)
-    Mux(t > tableLog2.U, tableLog2.U, t)
+  /** log2 of BroadPhaseModel.bucketsFor(n), one-hot: the least t with 2^t >= n 2^bucketsPerSphereLog2,
+    * capped at the table (0 for n = 0). From compares of n against constants, so no subtraction,
+    * leading-one search or add lies between a world's size and its first registers. */
+  private def bucketsLog2OneHot(n: UInt): Seq[(Bool, Int)] = {
+    // above(c): ceil(log2 n) > c, i.e. n > 2^c (a thermometer); ceil(log2 n) = c exactly
+    // where above(c - 1) holds and above(c) does not.
+    val above = (0 to countW).map(c => n > (BigInt(1) << c).U)
+    val byCeil = (0 to countW).map { c =>
+      val is = (if (c == 0) n =/= 0.U else above(c - 1)) && !above(c)
+      is -> math.min(c + bp.bucketsPerSphereLog2, tableLog2)
+    }
+    ((n === 0.U) -> 0) +: byCeil
   }
+  private def bucketsLog2For(n: UInt): UInt = Mux1H(bucketsLog2OneHot(n).map { case (b, t) => b -> t.U(log2Ceil(tableLog2 + 1).W) })
+  /** 2^bucketsLog2For(n), from the same one-hot. */
+  private def bucketsFor(n: UInt): UInt = Mux1H(bucketsLog2OneHot(n).map { case (b, t) => b -> (BigInt(1) << t).U((tableLog2 + 1).W) })
 
   // Lane l's slice of the table, [cut(l), cut(l + 1)), c_l = floor(l 2^16 / lanes): the slices
   // tile the table, each bound within num / 2^16 + 1 of num l / lanes (a multiply by a
   // constant, where an exact cut would need a divider). The load pass and the large pass use them.
   private def cutOf(n: UInt, m: Int): UInt =
-    if (m == 0) 0.U else if (m == bp.lanes) n else ((n * ((m.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0)
+    if (m == 0) 0.U else if (m == bp.lanes) n else (timesConst(n, (m.toLong << 16) / bp.lanes) >> 16).pad(countW)(countW - 1, 0)
+  /** n k for a constant k, as a tree of adds of n's shifts (one per bit of k): a world's size
+    * reaches its lanes' bounds without a multiplier (16 lanes: k = m 2^12, at most three adds in two levels). */
+  private def timesConst(n: UInt, k: Long): UInt =
+    Tree.reduce((0 until 64).filter(b => ((k >> b) & 1) == 1).map(b => n << b))(_ +& _)
   private def cut(m: Int): UInt = cutOf(num, m)
 
   // --- passes 1, 2 and 4: read the sphere table through SphereKeys --------------------------
@@ -196,14 +210,20 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // whole table with one port, halves with two, quarters with four, through lane q's sphere
   // port and SphereKeys. (In pass 5 the generators read it, for their key records.)
   private def from(port: Int): UInt =
-    if (port == 0) 0.U else ((num * port.U) >> log2Ceil(ports)).pad(countW)(countW - 1, 0)
+    if (port == 0) 0.U else (timesConst(num, port) >> log2Ceil(ports)).pad(countW)(countW - 1, 0)
   private def to(port: Int): UInt = if (port == ports - 1) num else from(port + 1)
-  private def hi(l: Int): UInt = Mux(state === S.load, cut(l + 1), if (l < ports) to(l) else 0.U)
   private val inPass = state === S.load || state === S.classify || state === S.scatter
   private val i = Reg(Vec(bp.lanes, UInt(countW.W))) // the next sphere each lane reads
+  // Each lane's bound, set with its start (setUp: the load pass's slice; restart: the port's
+  // range, none past the ports), so no multiply lies between a lane's count and its read.
+  private val hi = Reg(Vec(bp.lanes, UInt(countW.W)))
   private val reading = VecInit.tabulate(bp.lanes)(l => inPass && i(l) < hi(l))
+  // The reads issued last cycle: SphereKeys' inputs, counted into `inflight` from registers.
+  private val issued = RegNext(reading, VecInit(Seq.fill(bp.lanes)(false.B)))
   private val inflight = RegInit(0.U(log2Ceil(bp.lanes * (keysLatency + 2) + 1).W)) // reads not yet out of SphereKeys
-  private val passDone = !reading.asUInt.orR && inflight === 0.U
+  /** Keys between SphereKeys and the sorts (CellHash's registers). */
+  private val hashBusy = WireDefault(false.B)
+  private val passDone = !reading.asUInt.orR && !issued.asUInt.orR && inflight === 0.U && !hashBusy
   private val level = cellExp.io.level
   private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > level
   private def record(o: SphereKeys): KeyRecord = {
@@ -223,7 +243,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val loading = state === S.load
   for ((lk, l) <- laneKeys.zipWithIndex) {
     io.sphere(l).addr := Mux(state === S.generate, gens(l).io.keyAddr, i(l)(itemW - 1, 0))
-    lk.io.in.valid := RegNext(reading(l), false.B)
+    lk.io.in.valid := issued(l)
     lk.io.in.sphere := io.sphere(l).data
     // need and top do not depend on the level
     lk.io.in.level := Mux(loading, 0.S, level)
@@ -240,7 +260,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val keyed = (0 until ports).map { q =>
     Keyed(laneKeys(q), Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
   }
-  inflight := inflight + PopCount(reading) - PopCount(laneKeys.map(_.io.out.valid))
+  inflight := inflight + PopCount(issued) - PopCount(laneKeys.map(_.io.out.valid))
   io.quiet := !io.busy && !sortBusy && feedInflight === 0.U
   for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
 
@@ -307,6 +327,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val fits = Reg(Bool())
     val groupLog2 = if (bp.coarseChunks) 3 else 0
     val hashBits = if (bp.coarseChunks) Mux(usedLog2 > 3.U, usedLog2 - 3.U, 0.U) else usedLog2
+    val hashCap = Reg(UInt((tableLog2 + 1).W)) // 2^hashBits, registered before the compare needs it
     val perWord = 1 << wordLog2
     def at(k: Int): Bool = boxCycle === (boxFirst + k).U
     boxDone := at(BroadPhase.boxSteps - 1)
@@ -327,6 +348,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
         val sat = extent.map(e => Mux(e >= (1 << (tableLog2 + 1)).U, (1 << (tableLog2 + 1)).U, e)(satW - 1, 0))
         for (a <- 0 until 3) boxExtent(a) := Mux(anyBox, Mux(extent(a) >= most, most, extent(a)), 0.U)
         factX := sat(0) +& 1.U; factY := sat(1) +& 1.U; factZ := sat(2) +& 2.U; sat0p2 := sat(0) +& 2.U
+        hashCap := (1.U((tableLog2 + 1).W) << hashBits)(tableLog2, 0)
       }
       when(at(2)) { placesXY := factX * factY }
       when(at(3)) {
@@ -340,7 +362,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       }
       when(at(5)) {
         // The places' buckets rounded up to a word, where they fit the buckets in use.
-        fits := anyBox && !big && places <= (1.U((tableLog2 + 1).W) << hashBits)
+        fits := anyBox && !big && places <= hashCap
         words := ((places << groupLog2) + (perWord - 1).U) >> wordLog2
       }
       when(at(6)) {
@@ -369,6 +391,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val m = Reg(UInt(log2Ceil(mergeItems + 2).W)) // the merge's next item: lane m / slots, slot m % slots
   /** A fed world's needs are in lanes 0 .. feedWidth-1 alone: the merge stops after them. */
   private val mergeEnd = if (feedWidth > 0) Mux(fed, (feedWidth * mergeSlots).U, mergeItems.U) else mergeItems.U
+  /** mergeEnd - m, counted down: the merge's end is a test of a register, not an add and a compare. */
+  private val mergeLeft = Reg(UInt(log2Ceil(mergeItems + 2).W))
   if (!wideLoad) needsOf(cellExp.io.in.head, 0)
   else {
     for ((e, l) <- laneExps.zipWithIndex) {
@@ -428,10 +452,11 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
   private val slack = {
     // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), k = ceil(level / 2),
-    // saturated to the width.
-    val e = bp.errorExp(p).S +& bp.filterFracBits.S -& SphereKeys.filterExp(level)
+    // saturated to the width. Registered twice (the exponent, then the slack): the level is
+    // set in the load pass, the slack used in the grid, passes later.
+    val e = RegNext(bp.errorExp(p).S +& bp.filterFracBits.S -& SphereKeys.filterExp(level))
     val big = e >= (qWidth - 1).S
-    Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0))))
+    RegNext(Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0)))))
   }
   for (sort <- sorts) {
     sort.io.usedLog2 := usedLog2
@@ -442,13 +467,18 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   }
   // Port q is port q % portsPerSort of group q / portsPerSort's sort.
   private val sortIns = sorts.flatMap(_.io.in)
-  for ((in, kd) <- sortIns.zip(keyed)) {
-    in.valid := kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall
-    in.bits.scatter := state === S.scatter
+  // A key reaches its sort CellHash.latency cycles after SphereKeys gives it, with its bucket.
+  private val hashing = for ((in, kd) <- sortIns.zip(keyed)) yield {
+    val v = Seq.iterate(kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall, CellHash.latency + 1)(
+      RegNext(_, false.B))
+    in.valid := v.last
+    in.bits.scatter := ShiftRegister(state === S.scatter, CellHash.latency)
     in.bits.bucket := CellHash(kd.out.cell, tableLog2, usedLog2, bp.coarseChunks, boxArg)
-    in.bits.item := kd.index
+    in.bits.item := ShiftRegister(kd.index, CellHash.latency)
     assert(!in.valid || in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
+    v.tail.reduce(_ || _)
   }
+  hashBusy := hashing.reduce(_ || _)
   for ((gen, l) <- gens.zipWithIndex) {
     val entryGroup = RegNext(gen.io.entry.group)
     for ((sort, g) <- sorts.zipWithIndex) {
@@ -594,16 +624,18 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // --- sequencing ----------------------------------------------------------------------------
   private def advance(): Unit = for (l <- 0 until bp.lanes) when(reading(l)) { i(l) := i(l) + 1.U }
   /** Classify and scatter: the ports' halves; other lanes read nothing. */
-  private def restart(): Unit = for (l <- 0 until bp.lanes) i(l) := (if (l < ports) from(l) else 0.U)
+  private def restart(): Unit = for (l <- 0 until bp.lanes) {
+    i(l) := (if (l < ports) from(l) else 0.U); hi(l) := (if (l < ports) to(l) else 0.U)
+  }
   // The broad phase's own cycles: from start (a fed table's arrival is the link's time).
   when(state =/= S.idle && !filling) { st.cycTotal := st.cycTotal + 1.U }
   /** A world of n spheres: its sizes and, for a fed table, a load pass that reads nothing (each
     * lane starts at its slice's end). */
   private def setUp(n: UInt, read: Bool): Unit = {
     num := n; usedLog2 := bucketsLog2For(n); largeCount := 0.U
-    walkBuckets := (1.U((tableLog2 + 1).W) << bucketsLog2For(n))(tableLog2, 0) // the box may cut it
+    walkBuckets := bucketsFor(n) // the box may cut it
     val cuts = (0 to bp.lanes).map(cutOf(n, _))
-    for (l <- 0 until bp.lanes) i(l) := Mux(read, cuts(l), cuts(l + 1))
+    for (l <- 0 until bp.lanes) { i(l) := Mux(read, cuts(l), cuts(l + 1)); hi(l) := cuts(l + 1) }
     fed := !read
   }
   when(io.start && (state === S.idle || filling)) { feedOn := false.B }
@@ -629,13 +661,13 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       st.cycLoad := st.cycLoad + 1.U
       advance()
       when(passDone && feedInflight === 0.U && !sortBusy) {
-        if (wideLoad) { state := S.merge; m := 0.U } else { state := S.settle; settle := 0.U }
+        if (wideLoad) { state := S.merge; m := 0.U; mergeLeft := mergeEnd } else { state := S.settle; settle := 0.U }
       }
     }
     is(S.merge) {
       st.cycLoad := st.cycLoad + 1.U
-      m := m + 2.U
-      when(m + 2.U >= mergeEnd) { state := S.settle; settle := 0.U } // the last values land this cycle
+      m := m + 2.U; mergeLeft := mergeLeft - 2.U
+      when(mergeLeft <= 2.U) { state := S.settle; settle := 0.U } // the last values land this cycle
     }
     is(S.settle) {
       // The level's own registers (CellExponent.levelLatency) take in the last needs.

@@ -186,16 +186,34 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   // Wide enough for a step of `lanes` words past the last one.
   private val bIssue = Reg(UInt(log2Ceil((1 << bucketsLog2) + lanes * perWord + 1).W))
   private val walkPend = RegInit(false.B)
+  // With claims, a word is decoded over two cycles: the cycle its ends come back registers
+  // the first occupied bucket, the groups that may be taken whole and that bucket's ends
+  // taken either way (the bucket, its group); `walkDec`, the next, decides from registers. A
+  // walk step takes a cycle more: a unit's few steps beside its chunk's hundreds of cycles.
+  private val walkDec = RegInit(false.B)
+  private val walkBusy = walkPend || walkDec
   private val walkB = Reg(UInt((bucketsLog2 + 1).W))
+  /** A bucket's word's first bucket, and the bucket's place in it. */
+  private def wordBase(b: UInt): UInt = (b >> wordLog2) << wordLog2
+  private def wordFrom(b: UInt): UInt = if (wordLog2 == 0) 0.U else b(wordLog2 - 1, 0)
   // With claims: bIssue is a bucket of the unit being walked (else the next unit is the claim's).
   private val inUnit = RegInit(false.B)
   private val single = RegInit(false.B)   // the claim walked is one bucket of a deferred unit
   private val unitFirst = RegInit(false.B) // the lookup pending is a unit's first
   private val deferPend = RegInit(false.B) // the unit at walkB waits to be handed back
+  // The word a lookup reads, decoded as the lookup is issued and registered beside walkB, so
+  // the cycle its ends come back only finds the first occupied bucket: which buckets lie in
+  // the walk (and, with claims, are this lane's), which groups may be taken whole, and the
+  // buckets the walk goes on to (the next word of this lane's, the word after this one).
+  private val groupsInWord = perWord >> groupLog2
+  private val inWalk = Reg(Vec(perWord, Bool()))
+  private val mayBeWhole = Reg(Vec(groupsInWord, Bool()))
+  private val nextWord = Reg(chiselTypeOf(bIssue)) // base + wordStep words
+  private val afterWord = Reg(chiselTypeOf(bIssue)) // base + one word
   io.take.foreach(_ := false.B)
-  io.need.foreach(_ := state === S.walk && !inUnit && !walkPend && !deferPend)
+  io.need.foreach(_ := state === S.walk && !inUnit && !walkBusy && !deferPend)
   io.defer.foreach { d => d.valid := deferPend; d.bits := walkB }
-  io.unresolved.foreach(_ := (walkPend && unitFirst) || deferPend)
+  io.unresolved.foreach(_ := (walkBusy && unitFirst) || deferPend)
   io.deferOk.foreach(ok => when(ok) { deferPend := false.B })
   // --- the chunk: its cell, where its scan starts, what the scan found ----------------------
   // Per group: where the scan starts, and the bucket's end (a bucket's entries: group 0's, then 1's).
@@ -228,21 +246,23 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   // is in flight and another is issued (visits of one entry or none follow each other at a
   // cycle each); more let the lookups run ahead through a visit of many entries, for the
   // run of short and empty ones after it (a visit's lookup takes a cycle, empty or not).
-  // The visits' lookups run in three stages so that no path goes from vIssue through the
-  // offsets, the adds and the hash to the table's address (CellHash, with box buckets two
-  // multiplies): `lkCell` (registered so the hash starts from a register, not from vIssue's
-  // offset and the adds) holds the neighbour cell issued the cycle before; `lkHash`
-  // (registered so the address leaving the block comes from a register) its bucket, the
-  // table's address this cycle; `lkPend` marks the lookup whose ends come back now. The two
-  // stages before `lkPend` add two ranges in flight, so the queue is two deeper and the
-  // look-ahead check counts them: as many ranges are queued ahead as without them.
-  private val lkStages = 2
+  // The visits' lookups run in stages so that no path goes from vIssue through the offsets,
+  // the adds and the hash to the table's address: `lkCell` (registered so the hash starts
+  // from a register, not from vIssue's offset and the adds) holds the neighbour cell issued
+  // the cycle before; CellHash's own registers (`lkHashing`: its latency, a subtraction and
+  // a multiply apart) follow; `lkHash` (registered so the address leaving the block comes
+  // from a register) holds its bucket, the table's address this cycle; `lkPend` marks the
+  // lookup whose ends come back now. Each stage before `lkPend` adds a range in flight, so
+  // the queue is as much deeper and the look-ahead check counts them: as many ranges are
+  // queued ahead as without them.
+  private val lkStages = 2 + CellHash.latency
   private val lkCellV = RegInit(false.B)
   private val lkCell = Reg(visitT)
+  private val lkHashing = RegInit(VecInit(Seq.fill(CellHash.latency)(false.B)))
   private val lkHashV = RegInit(false.B)
   private val lkHash = Reg(chiselTypeOf(io.lookup.bucket))
   private val lkHashVisit = Reg(visitT)
-  private val lkInFlight = lkCellV.asUInt +& lkHashV.asUInt +& lkPend.asUInt
+  private val lkInFlight = lkCellV.asUInt +& PopCount(lkHashing) +& lkHashV.asUInt +& lkPend.asUInt
   private val lkq = Module(new Queue(new StreamRange(visitT, countW, groups), lookAhead + lkStages))
   lkq.io.enq.valid := false.B
   lkq.io.enq.bits := DontCare
@@ -250,15 +270,16 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   // --- large pass ------------------------------------------------------------------------
   private val li = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W))
   private val lj = Reg(UInt(log2Ceil(chunk + 1).W))
+  private val lIdx = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W)) // li + lj, kept so no add lies before the large list's read
 
   /** A chunk of a new bucket: its scan is requested behind the last chunk's visits, and its
     * first scan entry clears the matcher once their hits have left. */
   private def startChunk(): Unit = {
     state := S.chunk; sent := false.B; vIssue := 0.U; lkPend := false.B; needClear := true.B
-    lkCellV := false.B; lkHashV := false.B
+    lkCellV := false.B; lkHashing.foreach(_ := false.B); lkHashV := false.B
   }
   private def startLargePass(): Unit = {
-    li := 0.U; lj := 0.U; matcher.io.clear := true.B
+    li := 0.U; lj := 0.U; lIdx := 0.U; matcher.io.clear := true.B
     state := Mux(io.largeCount === 0.U || io.largeFrom >= io.largeTo, S.idle, S.largeLoad)
   }
 
@@ -276,73 +297,107 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // With claims, a lookup only while none is pending (its word may end the unit, or not),
       // of the unit's next bucket or else of the held claim's first, which it takes.
       val claimV = io.claim.map(_.valid).getOrElse(false.B)
-      val issueOk = if (claims) !walkPend && !deferPend && (inUnit || claimV) else bIssue < walkEnd
+      val issueOk = if (claims) !walkBusy && !deferPend && (inUnit || claimV) else bIssue < walkEnd
       val issueAt = if (claims) Mux(inUnit, bIssue, io.claim.get.bits.bucket) else bIssue
       io.lookup.bucket := issueAt(math.max(1, bucketsLog2) - 1, 0)
       walkPend := issueOk
-      when(issueOk || (!claims).B) { walkB := issueAt }
+      // The claim's single flag as the word is read (its first word sets it).
+      val singleAt = if (claims) Mux(issueOk && !inUnit, io.claim.get.bits.single, single) else single
+      when(issueOk || (!claims).B) {
+        walkB := issueAt
+        val (b, f) = (wordBase(issueAt), wordFrom(issueAt))
+        // With claims, a lane takes the buckets of its claim: one, or the unit's.
+        def claimed(l: Int): Bool =
+          if (!claims) true.B
+          else Mux(singleAt, f === l.U, if (unitLog2 >= wordLog2) true.B else (f >> unitLog2) === (l >> unitLog2).U)
+        for (l <- 0 until perWord) inWalk(l) := l.U >= f && b + l.U < walkEnd && claimed(l)
+        // A walk resumed inside a group (from > its first bucket) follows a bucket of it taken
+        // cell by cell: that group is not taken whole (and its first begin is not in the word read).
+        for (gi <- 0 until groupsInWord) mayBeWhole(gi) := coarse.B && f <= (gi << groupLog2).U && !singleAt
+        nextWord := b + (wordStep * perWord).U
+        afterWord := b + perWord.U
+      }
       when(issueOk) {
         if (claims) {
           inUnit := false.B; io.take.get := !inUnit; unitFirst := !inUnit && !io.claim.get.bits.single
           when(!inUnit) { single := io.claim.get.bits.single }
         } else bIssue := ((bIssue >> wordLog2) + wordStep.U) << wordLog2
       }
-      val base = (walkB >> wordLog2) << wordLog2
-      val from = if (wordLog2 == 0) 0.U else walkB(wordLog2 - 1, 0)
+      val base = wordBase(walkB)
+      /** Bucket k < perWord of the word read: base + k, no carry past the word. */
+      def inWord(k: UInt): UInt = if (wordLog2 == 0) base else Cat(base >> wordLog2, k(wordLog2 - 1, 0))
       val ends = io.lookup.word
       // Bucket 0's begin is right when walkB is the word's first bucket.
       val begins = (0 until groups).map(g => VecInit(io.lookup.begin(g) +: ends(g).init))
-      // With coarse chunks, each group of 8 buckets: taken whole if its spheres fit a chunk. A
-      // walk resumed inside a group (from > its first bucket) follows a bucket of it taken cell
-      // by cell: that group is not coarse (and its first begin is not in the word read).
-      val groupsInWord = perWord >> groupLog2
+      // With coarse chunks, each group of 8 buckets: taken whole if its spheres fit a chunk.
       val gCoarse = VecInit((0 until groupsInWord).map { gi =>
         val (lo, last) = (gi << groupLog2, ((gi + 1) << groupLog2) - 1)
         val total = (0 until groups).map(g => ends(g)(last) - begins(g)(lo)).reduce(_ +& _)
-        coarse.B && from <= lo.U && total <= chunk.U && !single
+        mayBeWhole(gi) && total <= chunk.U
       })
       // In a team, a member takes the coarse groups and the other groups' buckets whose number
       // among the team's is its own modulo the team: a group by its number in the team's walk
       // (word number over the teams, then the group in the word), a bucket by its place in the word.
       def mine(l: Int): Bool =
-        if (claims) Mux(single, from === l.U, if (unitLog2 >= wordLog2) true.B else (from >> unitLog2) === (l >> unitLog2).U)
-        else if (!dealByUnit) true.B
+        if (!dealByUnit) true.B
         else {
           val walkWord = base >> (wordLog2 + log2Ceil(wordStep))
           val walkGroup = if (wordLog2 == groupLog2) walkWord else Cat(walkWord, (l >> groupLog2).U((wordLog2 - groupLog2).W))
-          val bucket = (base + l.U).pad(memberBits)
+          val bucket = inWord(l.U(math.max(1, wordLog2).W)).pad(memberBits)
           Mux(gCoarse(l >> groupLog2), walkGroup.pad(memberBits)(memberBits - 1, 0), bucket(memberBits - 1, 0)) === member
         }
-      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < walkEnd && mine(l) &&
+      val occupied = VecInit((0 until perWord).map(l => inWalk(l) && mine(l) &&
         (0 until groups).map(g => ends(g)(l) =/= begins(g)(l)).reduce(_ || _)))
-      val lane = PriorityEncoder(occupied.asUInt)
-      val gLo = (lane >> groupLog2) << groupLog2
-      val gLast = gLo | ((1 << groupLog2) - 1).U
-      val asCoarse = gCoarse(lane >> groupLog2)
+      val firstLane = PriorityEncoder(occupied.asUInt)
+      def groupLo(l: UInt): UInt = (l >> groupLog2) << groupLog2
+      def groupLast(l: UInt): UInt = groupLo(l) | ((1 << groupLog2) - 1).U
+      // The first occupied bucket's ends, taken as a bucket and as its group.
+      def bucketEnds(l: UInt) = (0 until groups).map(g => (begins(g)(l), ends(g)(l)))
+      def groupEnds(l: UInt) = (0 until groups).map(g => (begins(g)(groupLo(l)), ends(g)(groupLast(l))))
+      val (decided, anyOccupied, lane, asCoarse, asBucket, asGroup) =
+        if (!claims) (walkPend, occupied.asUInt.orR, firstLane, gCoarse(firstLane >> groupLog2),
+          bucketEnds(firstLane), groupEnds(firstLane))
+        else {
+          val decAny = Reg(Bool())
+          val decLane = Reg(chiselTypeOf(firstLane))
+          val decWhole = Reg(chiselTypeOf(gCoarse))
+          val decBucket, decGroup = Reg(Vec(groups, Vec(2, UInt(countW.W))))
+          walkDec := walkPend
+          when(walkPend) {
+            decAny := occupied.asUInt.orR; decLane := firstLane; decWhole := gCoarse
+            for ((d, e) <- Seq(decBucket -> bucketEnds(firstLane), decGroup -> groupEnds(firstLane)); g <- 0 until groups) {
+              d(g)(0) := e(g)._1; d(g)(1) := e(g)._2
+            }
+          }
+          (walkDec, decAny, decLane, decWhole(decLane >> groupLog2), decBucket.map(v => (v(0), v(1))),
+            decGroup.map(v => (v(0), v(1))))
+        }
+      val gLast = groupLast(lane)
+      val lastInWord = (perWord - 1).U
       // A unit's first word whose group is not one coarse chunk goes back to be dealt a bucket at a time.
       val deferIt = (claims && coarse).B && unitFirst && !asCoarse
-      when(walkPend && occupied.asUInt.orR && deferIt) {
+      when(decided && anyOccupied && deferIt) {
         deferPend := true.B; walkPend := false.B
-      }.elsewhen(walkPend && occupied.asUInt.orR) {
+      }.elsewhen(decided && anyOccupied) {
         when(asCoarse) {
-          for (g <- 0 until groups) { p(g) := begins(g)(gLo); bEnd(g) := ends(g)(gLast) }
-          bIssue := Mux(gLast === (perWord - 1).U, base + (wordStep * perWord).U, base + gLast + 1.U)
+          for (g <- 0 until groups) { p(g) := asGroup(g)._1; bEnd(g) := asGroup(g)._2 }
+          bIssue := Mux(gLast === lastInWord, nextWord, inWord(gLast + 1.U))
         }.otherwise {
-          for (g <- 0 until groups) { p(g) := begins(g)(lane); bEnd(g) := ends(g)(lane) }
+          for (g <- 0 until groups) { p(g) := asBucket(g)._1; bEnd(g) := asBucket(g)._2 }
           // On past it in this word, or at the word's end on to this lane's next word.
-          bIssue := Mux(lane === (perWord - 1).U, base + (wordStep * perWord).U, base + lane + 1.U)
+          bIssue := Mux(lane === lastInWord, nextWord, inWord(lane + 1.U))
         }
         if (claims) {
           // Past the bucket; the unit goes on unless that was its last bucket (a coarse group is one unit).
           val lastOfUnit = if (unitLog2 == 0) true.B else lane(unitLog2 - 1, 0).andR
           inUnit := !asCoarse && !lastOfUnit && !single
-          bIssue := base + lane + 1.U
+          bIssue := Mux(lane === lastInWord, afterWord, inWord(lane + 1.U))
         }
         coarseCh := asCoarse
         haveCell := false.B
         walkPend := false.B; cells := cells + 1.U
         startChunk()
-      }.elsewhen(!walkPend && !issueOk && !deferPend && io.claimsOut.getOrElse(true.B) && stream.io.idle && matcher.io.idle) {
+      }.elsewhen(!walkBusy && !issueOk && !deferPend && io.claimsOut.getOrElse(true.B) && stream.io.idle && matcher.io.idle) {
         startLargePass() // the last chunk's visits all matched
       }
     }
@@ -369,10 +424,11 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // Stage 1: the neighbour cell and its offset.
       lkCellV := canIssue
       lkCell.cell := nc; lkCell.off := off; lkCell.scan := false.B
-      // Stage 2: its bucket, from the registered cell.
-      lkHashV := lkCellV
+      // Stage 2: its bucket, CellHash.latency cycles after the registered cell.
+      for (k <- 0 until CellHash.latency) lkHashing(k) := (if (k == 0) lkCellV else lkHashing(k - 1))
+      lkHashV := lkHashing.last
       lkHash := CellHash(lkCell.cell, bucketsLog2, io.usedLog2, coarse, io.box)
-      lkHashVisit := lkCell
+      lkHashVisit := ShiftRegister(lkCell, CellHash.latency)
       // Stage 3: the registered bucket is the table's address; its ends come back the cycle after.
       io.lookup.bucket := lkHash
       lkPend := lkHashV
@@ -386,7 +442,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
 
       // Every range handed to the stream and the scan's entries all seen: the next chunk of
       // this bucket can start its scan behind the visits still streaming.
-      val visitsIssued = vIssue === visitCount && !lkCellV && !lkHashV && !lkPend && !lkq.io.deq.valid
+      val visitsIssued = vIssue === visitCount && !lkCellV && !lkHashing.asUInt.orR && !lkHashV && !lkPend && !lkq.io.deq.valid
       val scanDone = sent && scanLeft === 0.U
       when(visitsIssued && scanDone) {
         when(moreOfCell || nextSet) {
@@ -409,10 +465,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       }
     }
     is(S.largeLoad) {
-      val idx = li +& lj
-      when(lj =/= chunk.U && idx < io.largeCount) {
+      when(lj =/= chunk.U && lIdx < io.largeCount) {
         matcher.io.load.valid := true.B
-        lj := lj + 1.U
+        lj := lj + 1.U; lIdx := lIdx + 1.U
       }.otherwise {
         state := S.largeStream; sent := false.B
       }
@@ -429,7 +484,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       when(stream.io.out.fire && !it.rec.excluded) { probes := probes + 1.U }
       when(sent && stream.io.idle && matcher.io.idle) {
         val nextLi = li +& chunk.U
-        li := nextLi; lj := 0.U; matcher.io.clear := true.B
+        li := nextLi; lj := 0.U; lIdx := nextLi; matcher.io.clear := true.B
         state := Mux(nextLi < io.largeCount, S.largeLoad, S.idle)
       }
     }
@@ -482,13 +537,13 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     val it = stream.io.out.bits
     val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
     matcher.io.load.bits := Mux(state === S.largeLoad,
-      ChunkMember(io.larges(VecIndex(li +& lj, largeSlots)), 0.U), ChunkMember(WorldKey(itemW, it.item, it.rec), place))
+      ChunkMember(io.larges(VecIndex(lIdx, largeSlots)), 0.U), ChunkMember(WorldKey(itemW, it.item, it.rec), place))
   }
 
   // What each grid cycle went to: an entry through the stream, or why none went.
   private val outV = stream.io.out.valid
   private val walkDone =
-    if (claims) !inUnit && !walkPend && !deferPend && io.claimsOut.get else !walkPend && bIssue >= walkEnd
+    if (claims) !inUnit && !walkBusy && !deferPend && io.claimsOut.get else !walkPend && bIssue >= walkEnd
   io.gridCycle := MuxCase(GridCycle.walk, Seq(
     stream.io.out.fire -> GridCycle.streamed,
     (outV && stream.io.out.bits.tag.scan && needClear) -> GridCycle.clearWait,

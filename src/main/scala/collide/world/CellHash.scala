@@ -12,25 +12,33 @@ import collide.world.model.BroadPhaseModel
   * (two's complement: a negative coordinate's low bits times the constant's are the product's
   * low bits). With `box` (box buckets: BroadPhaseModel.BoxMap), the hash is the unit's place in
   * the padded box instead, (x - o_x) + rx (y - o_y) + rxy (z - o_z): two variable multiplies
-  * of the table's width, whose low bits are all that matter. */
+  * of the table's width, whose low bits are all that matter. The bucket comes `latency` cycles
+  * after the cell (the box map and usedLog2 are held meanwhile). */
 object CellHash {
+  /** Cycles from a cell to its bucket: a register after the subtractions (or the cell's low
+    * bits) and one after the multiplies, so no path runs through a multiply and an add. */
+  val latency = 2
+
   def apply(cell: Vec[SInt], bucketsLog2: Int, usedLog2: UInt, coarse: Boolean = false, box: Option[BoxMapBits] = None): UInt = {
     val w = bucketsLog2
     def hash(c: Seq[SInt], w: Int): UInt = {
       def low(c: SInt): UInt = c.pad(math.max(w, c.getWidth)).asUInt(w - 1, 0)
-      def times(c: SInt, h: Long): UInt = (low(c) * (h & ((1L << w) - 1)).U(w.W))(w - 1, 0)
       box match {
-        case None => times(c(0), BroadPhaseModel.HashX) ^ times(c(1), BroadPhaseModel.HashY) ^ times(c(2), BroadPhaseModel.HashZ)
+        case None =>
+          val lows = c.map(x => RegNext(low(x)))
+          val hs = Seq(BroadPhaseModel.HashX, BroadPhaseModel.HashY, BroadPhaseModel.HashZ)
+          lows.zip(hs).map { case (l, h) => RegNext((l * (h & ((1L << w) - 1)).U(w.W))(w - 1, 0)) }.reduce(_ ^ _)
         case Some(b) =>
           require(b.hashW >= w, s"a box map of ${b.hashW} bits for a hash of $w")
-          def d(a: Int): UInt = low(c(a) -& b.origin(a))
-          (d(0) + (b.rx(w - 1, 0) * d(1))(w - 1, 0) + (b.rxy(w - 1, 0) * d(2))(w - 1, 0))(w - 1, 0)
+          val d = (0 until 3).map(a => RegNext(low(c(a) -& b.origin(a))))
+          val terms = Seq(RegNext(d(0)), RegNext((b.rx(w - 1, 0) * d(1))(w - 1, 0)), RegNext((b.rxy(w - 1, 0) * d(2))(w - 1, 0)))
+          (terms(0) + terms(1) + terms(2))(w - 1, 0)
       }
     }
     val h =
       if (!coarse) hash(cell, w)
       else {
-        val place = Cat(cell(0)(0), cell(1)(0), cell(2)(0))
+        val place = ShiftRegister(Cat(cell(0)(0), cell(1)(0), cell(2)(0)), latency)
         if (w <= 3) place(w - 1, 0) else Cat(hash(cell.map(c => (c >> 1).asSInt), w - 3), place)
       }
     val mask = ((1.U((w + 1).W) << usedLog2) - 1.U)(w - 1, 0)

@@ -146,9 +146,11 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   private def nearPass(a: ChunkMatcher.NearBox, b: ChunkMatcher.NearBox): Bool =
     (0 until 3).map(ax => !(b.hi(ax) -% a.lo(ax))(nearBits - 1) && !(a.hi(ax) -% b.lo(ax))(nearBits - 1)).reduce(_ && _)
   private val inCell = e.cell.zip(probe.cell).map { case (a, b) => a === b }.reduce(_ && _)
+  /** Which members come before the probe: a hit's order (i < j) is known when it is found. */
+  private val laterNow = VecInit((0 until chunk).map(m => e.index > memberIndex(cur, m.U))).asUInt
   private val hitsNow = VecInit((0 until chunk).map { m =>
     val mem = members(m)
-    val later = e.index > memberIndex(cur, m.U)
+    val later = laterNow(m)
     val takes = Mux(probe.anyCell, !probe.own || later, inCell && owns(mem.place, probe.off, later))
     m.U < usedAt && takes && (if (m < wideSlots) boxPass(wideBoxes(m), probeBox) else nearPass(nearBoxes(m - wideSlots), probeNear))
   }).asUInt
@@ -157,12 +159,16 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   private val pending = RegInit(0.U(chunk.W))
   private val entry = Reg(UInt(itemW.W))
   private val pendBank = Reg(Bool()) // the bank of the members `pending` names
+  // Which of them come before `entry` (laterNow, registered with the hits), so the pair's
+  // order needs no compare after the slot is found.
+  private val pendLater = Reg(UInt(chunk.W))
   private val slot = PriorityEncoder(pending)
   private val lastHit = PopCount(pending) <= 1.U
   io.out.valid := pending.orR
   private val mIndex = memberIndex(pendBank, slot)
-  io.out.bits.i := Mux(mIndex < entry, mIndex, entry)
-  io.out.bits.j := Mux(mIndex < entry, entry, mIndex)
+  private val memberFirst = pendLater(slot)
+  io.out.bits.i := Mux(memberFirst, mIndex, entry)
+  io.out.bits.j := Mux(memberFirst, entry, mIndex)
   // Hits are owed in order, the chunk before's first: none of it is left once neither the
   // sphere draining nor the queue's head is of the other bank.
   private val pendOld = pending.orR && pendBank =/= cur
@@ -173,28 +179,34 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   if (hitQueue == 0) {
     io.in.ready := free
     pending := Mux(io.in.fire, hitsNow, drained)
-    when(io.in.fire) { entry := e.index; pendBank := cur }
+    when(io.in.fire) { entry := e.index; pendBank := cur; pendLater := laterNow }
     io.idle := !pending.orR
     oldQueued := false.B
   } else {
     // Only spheres with a hit are queued; the comparators' result never reaches in.ready
     // (a long path), so a full queue stops the stream even for a sphere without one.
-    class Hits extends Bundle { val mask = UInt(chunk.W); val index = UInt(itemW.W); val bank = Bool() }
-    // One more entry for the probe being compared: it is taken only while the queue has room
-    // for it after the one before, so `hitQueue` spheres' hits still wait as without the stage.
-    val q = Module(new Queue(new Hits, hitQueue + 1))
+    class Hits extends Bundle { val mask = UInt(chunk.W); val later = UInt(chunk.W); val index = UInt(itemW.W); val bank = Bool() }
+    // The compare's result is registered (`found`) before it is queued, so no path runs from
+    // the boxes' compares through the queue's count. Two more entries, for the probe being
+    // compared and the one found: a probe is taken only while the queue has room for it after
+    // those before, so `hitQueue` spheres' hits still wait as without the stages.
+    val q = Module(new Queue(new Hits, hitQueue + 2))
+    val foundV = RegNext(stV, false.B)
+    val found = Reg(new Hits)
+    when(stV) { found.mask := hitsNow; found.later := laterNow; found.index := e.index; found.bank := cur }
     // The queue's count, mirrored in a register of our own: the Queue's (a difference of its
-    // pointers, hitQueue + 1 not a power of two) was a long path into in.ready.
-    val held = RegInit(0.U(log2Ceil(hitQueue + 2).W))
+    // pointers, not a power of two) was a long path into in.ready.
+    val held = RegInit(0.U(log2Ceil(hitQueue + 3).W))
     held := held + q.io.enq.fire.asUInt - q.io.deq.fire.asUInt
-    io.in.ready := (held +& stV.asUInt) <= hitQueue.U
-    q.io.enq.valid := stV && hitsNow.orR
-    q.io.enq.bits.mask := hitsNow; q.io.enq.bits.index := e.index; q.io.enq.bits.bank := cur
+    io.in.ready := (held +& stV.asUInt +& foundV.asUInt) <= (hitQueue + 1).U
+    q.io.enq.valid := foundV && found.mask.orR
+    q.io.enq.bits := found
     q.io.deq.ready := free
     pending := Mux(q.io.deq.fire, q.io.deq.bits.mask, drained)
-    when(q.io.deq.fire) { entry := q.io.deq.bits.index; pendBank := q.io.deq.bits.bank }
-    io.idle := !pending.orR && !q.io.deq.valid && !stV
-    oldQueued := q.io.deq.valid && q.io.deq.bits.bank =/= cur
+    when(q.io.deq.fire) { entry := q.io.deq.bits.index; pendBank := q.io.deq.bits.bank; pendLater := q.io.deq.bits.later }
+    io.idle := !pending.orR && !q.io.deq.valid && !stV && !foundV
+    // Hits of the chunk before still owed: at the queue's head, or found and not yet queued.
+    oldQueued := (q.io.deq.valid && q.io.deq.bits.bank =/= cur) || (foundV && found.mask.orR && found.bank =/= cur)
   }
   io.canClear := (if (drainBehind) !pendOld && !oldQueued else io.idle)
 }
