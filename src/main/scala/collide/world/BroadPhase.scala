@@ -404,10 +404,13 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val filled = VecInit(laneExps.flatMap(e => (0 until mergeSlots).map(j => j.U < e.io.used)))
     val tops = VecInit(laneExps.flatMap(e => Seq.fill(mergeSlots)(e.io.top)))
     val anyTops = VecInit(laneExps.flatMap(e => Seq.fill(mergeSlots)(e.io.anyTop)))
+    require(cellExp.io.in.length <= 2, "the merge feeds two values a cycle")
     for ((ce, d) <- cellExp.io.in.zipWithIndex) {
-      val at = m +& d.U
+      // m counts by two from 0, so m + d is m with its low bit set, and m + d < mergeEnd is
+      // d < mergeLeft: no add or compare before the merge's valid.
+      val at = m | d.U
       val idx = at(log2Ceil(mergeItems) - 1, 0)
-      ce.valid := state === S.merge && at < mergeEnd && filled(idx)
+      ce.valid := state === S.merge && mergeLeft > d.U && filled(idx)
       ce.need := needs(idx); ce.needNone := false.B // an empty need is minK, as the lane kept it
       ce.top := tops(idx); ce.topNone := !anyTops(idx)
       ce.nonFinite := false.B

@@ -187,7 +187,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val bIssue = Reg(UInt(log2Ceil((1 << bucketsLog2) + lanes * perWord + 1).W))
   private val walkPend = RegInit(false.B)
   // With claims, a word is decoded over two cycles: the cycle its ends come back registers
-  // the first occupied bucket, the groups that may be taken whole and that bucket's ends
+  // the first occupied bucket, each group's total and that bucket's ends
   // taken either way (the bucket, its group); `walkDec`, the next, decides from registers. A
   // walk step takes a cycle more: a unit's few steps beside its chunk's hundreds of cycles.
   private val walkDec = RegInit(false.B)
@@ -330,11 +330,11 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // Bucket 0's begin is right when walkB is the word's first bucket.
       val begins = (0 until groups).map(g => VecInit(io.lookup.begin(g) +: ends(g).init))
       // With coarse chunks, each group of 8 buckets: taken whole if its spheres fit a chunk.
-      val gCoarse = VecInit((0 until groupsInWord).map { gi =>
+      val totals = VecInit((0 until groupsInWord).map { gi =>
         val (lo, last) = (gi << groupLog2, ((gi + 1) << groupLog2) - 1)
-        val total = (0 until groups).map(g => ends(g)(last) - begins(g)(lo)).reduce(_ +& _)
-        mayBeWhole(gi) && total <= chunk.U
+        (0 until groups).map(g => ends(g)(last) - begins(g)(lo)).reduce(_ +& _)
       })
+      val gCoarse = VecInit((0 until groupsInWord).map(gi => mayBeWhole(gi) && totals(gi) <= chunk.U))
       // In a team, a member takes the coarse groups and the other groups' buckets whose number
       // among the team's is its own modulo the team: a group by its number in the team's walk
       // (word number over the teams, then the group in the word), a bucket by its place in the word.
@@ -360,16 +360,17 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         else {
           val decAny = Reg(Bool())
           val decLane = Reg(chiselTypeOf(firstLane))
-          val decWhole = Reg(chiselTypeOf(gCoarse))
+          val decTotals = Reg(chiselTypeOf(totals)) // compared with the chunk in the deciding cycle
           val decBucket, decGroup = Reg(Vec(groups, Vec(2, UInt(countW.W))))
           walkDec := walkPend
           when(walkPend) {
-            decAny := occupied.asUInt.orR; decLane := firstLane; decWhole := gCoarse
+            decAny := occupied.asUInt.orR; decLane := firstLane; decTotals := totals
             for ((d, e) <- Seq(decBucket -> bucketEnds(firstLane), decGroup -> groupEnds(firstLane)); g <- 0 until groups) {
               d(g)(0) := e(g)._1; d(g)(1) := e(g)._2
             }
           }
-          (walkDec, decAny, decLane, decWhole(decLane >> groupLog2), decBucket.map(v => (v(0), v(1))),
+          val g = decLane >> groupLog2
+          (walkDec, decAny, decLane, mayBeWhole(g) && decTotals(g) <= chunk.U, decBucket.map(v => (v(0), v(1))),
             decGroup.map(v => (v(0), v(1))))
         }
       val gLast = groupLast(lane)
