@@ -189,9 +189,12 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     ((n === 0.U) -> 0) +: byCeil
   }
-  private def bucketsLog2For(n: UInt): UInt = Mux1H(bucketsLog2OneHot(n).map { case (b, t) => b -> t.U(log2Ceil(tableLog2 + 1).W) })
-  /** 2^bucketsLog2For(n), from the same one-hot. */
-  private def bucketsFor(n: UInt): UInt = Mux1H(bucketsLog2OneHot(n).map { case (b, t) => b -> (BigInt(1) << t).U((tableLog2 + 1).W) })
+  /** The buckets' log2 and their count, 2^log2, both from one one-hot of n. */
+  private def bucketsOf(n: UInt): (UInt, UInt) = {
+    val oh = bucketsLog2OneHot(n)
+    (Mux1H(oh.map { case (b, t) => b -> t.U(log2Ceil(tableLog2 + 1).W) }),
+      Mux1H(oh.map { case (b, t) => b -> (BigInt(1) << t).U((tableLog2 + 1).W) }))
+  }
 
   // Lane l's slice of the table, [cut(l), cut(l + 1)), c_l = floor(l 2^16 / lanes): the slices
   // tile the table, each bound within num / 2^16 + 1 of num l / lanes (a multiply by a
@@ -223,7 +226,12 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val inflight = RegInit(0.U(log2Ceil(bp.lanes * (keysLatency + 2) + 1).W)) // reads not yet out of SphereKeys
   /** Keys between SphereKeys and the sorts (CellHash's registers). */
   private val hashBusy = WireDefault(false.B)
-  private val passDone = !reading.asUInt.orR && !issued.asUInt.orR && inflight === 0.U && !hashBusy
+  // No lane has a read left, registered: the lanes' compares (carry chains) then do not lead the
+  // pass-done logic into the state machine. It lags by one cycle where it matters at all (the
+  // last read's keys are still in SphereKeys), and a cycle that sets the lanes' ranges clears it.
+  private val settingLanes = WireDefault(false.B)
+  private val lanesDone = RegNext(!settingLanes && !VecInit.tabulate(bp.lanes)(l => i(l) < hi(l)).asUInt.orR, false.B)
+  private val passDone = lanesDone && !issued.asUInt.orR && inflight === 0.U && !hashBusy
   private val level = cellExp.io.level
   private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > level
   private def record(o: SphereKeys): KeyRecord = {
@@ -276,7 +284,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   /** The box's map is final: classify may start. */
   private val boxDone = WireDefault(true.B)
   /** Buckets in use: 2^usedLog2. */
-  private val used = (1.U((tableLog2 + 1).W) << usedLog2)(tableLog2, 0)
+  /** The buckets in use, 2^usedLog2, a register of its own (set with usedLog2), so the box's
+    * fit compares it with no shift before the compare. */
+  private val used = Reg(UInt((tableLog2 + 1).W))
   private val wordLog2 = math.min(bp.wordLog2, tableLog2)
   /** The buckets the prefix sum and the walk cover (BroadPhaseModel.walkBuckets): those in use,
     * or, where the box's places fit them, the places' buckets rounded up to a word. */
@@ -435,7 +445,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val largeHere = RegNext(VecInit(keyed.map(kd => classifying && kd.valid && kd.isLarge)),
     VecInit(Seq.fill(ports)(false.B)))
   private val largeKeys = RegNext(VecInit(keyed.map(kd => WorldKey(itemW, kd.index, record(kd.o)))))
-  private val largeNow = countBits(largeHere)
+  // Their count, registered with them (countOf): no count lies before the list's add.
+  private val largeNow = countOf(_.isLarge)
   private val packed = VecInit.tabulate(ports) { j =>
     Mux1H((j until ports).map(q => (largeHere(q) && countBits(largeHere.take(q)) === j.U) -> largeKeys(q)))
   }
@@ -448,10 +459,10 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val largeKept = Mux(largeNew > bp.largeMax.U, bp.largeMax.U, largeNew)
   // st.large counts with largeCount from zero in each world (both cleared at its start), so it
   // is set to the count, not added to.
-  when(largeHere.asUInt.orR) {
-    when(largeNew > bp.largeMax.U) { st.largeOverflow := true.B }
-    st.large := largeKept; largeCount := largeKept
-  }
+  when(largeHere.asUInt.orR) { st.large := largeKept; largeCount := largeKept }
+  // The overflow is a sticky status bit: set a cycle on, from a register (the count's add and
+  // compare then end at a plain register, with no enable logic after them).
+  when(RegNext(largeHere.asUInt.orR && largeNew > bp.largeMax.U, false.B)) { st.largeOverflow := true.B }
 
   private val slack = {
     // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), k = ceil(level / 2),
@@ -603,9 +614,13 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       gens(l).io.claim.get.bits.bucket := grant(l)
       gens(l).io.claim.get.bits.single := grantSingle(l)
     }
-    val granted = Mux(asked > left, left, asked)
+    // One subtraction both tests and counts down: its borrow says more were asked than are left.
+    val sw = uW max asked.getWidth
+    val rest = left.pad(sw) -& asked.pad(sw)
+    val short = rest(sw)
+    val granted = Mux(short, left, asked)
     next := next + granted
-    left := left - granted
+    left := Mux(short, 0.U, rest(uW - 1, 0))
     // Nothing left: every unit granted and resolved (walked, or deferred and every bucket dealt),
     // and no deferred bucket on its way through stage 2 (a unit lane there gets one only while
     // left is not zero).
@@ -627,22 +642,31 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // --- sequencing ----------------------------------------------------------------------------
   private def advance(): Unit = for (l <- 0 until bp.lanes) when(reading(l)) { i(l) := i(l) + 1.U }
   /** Classify and scatter: the ports' halves; other lanes read nothing. */
-  private def restart(): Unit = for (l <- 0 until bp.lanes) {
-    i(l) := (if (l < ports) from(l) else 0.U); hi(l) := (if (l < ports) to(l) else 0.U)
+  private def restart(): Unit = {
+    settingLanes := true.B
+    for (l <- 0 until bp.lanes) { i(l) := (if (l < ports) from(l) else 0.U); hi(l) := (if (l < ports) to(l) else 0.U) }
   }
   // The broad phase's own cycles: from start (a fed table's arrival is the link's time).
   when(state =/= S.idle && !filling) { st.cycTotal := st.cycTotal + 1.U }
   /** A world of n spheres: its sizes and, for a fed table, a load pass that reads nothing (each
     * lane starts at its slice's end). */
-  private def setUp(n: UInt, read: Bool): Unit = {
-    num := n; usedLog2 := bucketsLog2For(n); largeCount := 0.U
-    walkBuckets := bucketsFor(n) // the box may cut it
-    val cuts = (0 to bp.lanes).map(cutOf(n, _))
+  private def setUp(n: UInt, read: Bool): Unit = setUp(n, (0 to bp.lanes).map(cutOf(n, _)), read)
+  /** The same with the lanes' slices given (`cuts`, cut(0) to cut(lanes) of n). */
+  private def setUp(n: UInt, cuts: Seq[UInt], read: Bool): Unit = {
+    val (log2, count) = bucketsOf(n)
+    num := n; usedLog2 := log2; used := count; largeCount := 0.U; settingLanes := true.B
+    walkBuckets := count // the box may cut it
     for (l <- 0 until bp.lanes) { i(l) := Mux(read, cuts(l), cuts(l + 1)); hi(l) := cuts(l + 1) }
     fed := !read
   }
+  // A world begun ahead has its slices computed at its begin, so its hand-over loads registers
+  // (the shift-and-add products were the broad phase's longest path, into the read positions).
+  private val pendingCuts = Reg(Vec(bp.lanes + 1, UInt(countW.W)))
   when(io.start && (state === S.idle || filling)) { feedOn := false.B }
-  when(beginAhead) { pending := true.B; pendingNum := io.num; feedOn := true.B }
+  when(beginAhead) {
+    pending := true.B; pendingNum := io.num; feedOn := true.B
+    pendingCuts := VecInit((0 to bp.lanes).map(cutOf(io.num, _)))
+  }
   switch(state) {
     is(S.idle) {
       when(io.start) {
@@ -714,7 +738,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       when(sent && !gensBusy) {
         state := S.idle
         when(pending) { // the world begun ahead: its table is (being) fed, its counters clear now
-          pending := false.B; handOver := true.B; setUp(pendingNum, false.B); state := S.fill
+          pending := false.B; handOver := true.B; setUp(pendingNum, pendingCuts, false.B); state := S.fill
         }
         st.level := level
         st.cells := laneSum(_.io.stats.cells); st.chunks := laneSum(_.io.stats.chunks)

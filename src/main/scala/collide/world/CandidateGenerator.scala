@@ -236,8 +236,10 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val fineVisits = BroadPhaseModel.Visits
   private val coarseVisits =
     if (!coarse) Nil else if (scanPairs) BroadPhaseModel.CoarseOthers else BroadPhaseModel.CoarseVisits
-  // One table: the fine visits' offsets, then the coarse ones'.
-  private val offsets = VecInit((fineVisits ++ coarseVisits).map { case (a, b, c) => VecInit(Seq(a, b, c).map(_.S(3.W))) })
+  // A table each, both indexed by vIssue and one picked: no add in front of the look-up.
+  private def offsetTable(vs: Seq[(Int, Int, Int)]) = VecInit(vs.map { case (a, b, c) => VecInit(Seq(a, b, c).map(_.S(3.W))) })
+  private val fineOffsets = offsetTable(fineVisits)
+  private val coarseOffsets = if (coarseVisits.isEmpty) None else Some(offsetTable(coarseVisits))
   private val visitCount = Mux(coarseCh, coarseVisits.length.U, fineVisits.length.U)
   private val vIssue = Reg(UInt(log2Ceil(math.max(fineVisits.length, coarseVisits.length) + 1).W))
   private val lkPend = RegInit(false.B)
@@ -267,10 +269,22 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   lkq.io.enq.valid := false.B
   lkq.io.enq.bits := DontCare
   lkq.io.deq.ready := false.B
+  // The ranges issued and not yet taken by the stream or dropped (lkq's count plus lkInFlight),
+  // kept in a register of its own: the queue's count (a difference of its pointers) and the
+  // additions were a long path into the issue decision and, through vIssue, the offsets.
+  private val lkTotal = RegInit(0.U(log2Ceil(lookAhead + lkStages + 2).W))
+  private val lkIssue = WireDefault(false.B)
+  private val lkDrop = WireDefault(false.B)
+  lkTotal := lkTotal + lkIssue.asUInt - lkq.io.deq.fire.asUInt - lkDrop.asUInt
+  assert(lkTotal === lkq.io.count +& lkInFlight, "CandidateGenerator: lookups counted apart from the queue and stages")
   // --- large pass ------------------------------------------------------------------------
   private val li = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W))
   private val lj = Reg(UInt(log2Ceil(chunk + 1).W))
   private val lIdx = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W)) // li + lj, kept so no add lies before the large list's read
+  private val lLoad = RegInit(false.B) // lKey was read last cycle: the matcher loads it now
+  private val lKey = Reg(new WorldKey(itemW, cellBits, qWidth))
+  lLoad := false.B
+  when(lLoad) { matcher.io.load.valid := true.B }
 
   /** A chunk of a new bucket: its scan is requested behind the last chunk's visits, and its
     * first scan entry clears the matcher once their hits have left. */
@@ -417,10 +431,15 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         chunks := chunks + 1.U
       }
 
-      val off = offsets(VecIndex(Mux(coarseCh, fineVisits.length.U +& vIssue, vIssue), offsets.length))
+      // AND-OR selects from vIssue's one-hot, not a table look-up: a look-up whose result is
+      // registered (lkCell.off) becomes a ROM whose address register is vIssue's next value,
+      // which puts the whole issue decision in front of the ROM.
+      def pick(t: Vec[Vec[SInt]]) = Mux1H(UIntToOH(vIssue, t.length).asBools, t)
+      val off = coarseOffsets.fold(pick(fineOffsets))(t => Mux(coarseCh, pick(t), pick(fineOffsets)))
       val nc = VecInit((0 until 3).map(a => curCell(a) + off(a)))
       // Every range in flight may end up queued: issue only while the queue has room for them all.
-      val canIssue = haveCell && vIssue =/= visitCount && (lkq.io.count +& lkInFlight) < (lookAhead + lkStages).U
+      val canIssue = haveCell && vIssue =/= visitCount && lkTotal < (lookAhead + lkStages).U
+      lkIssue := canIssue
       when(canIssue) { vIssue := vIssue + 1.U }
       // Stage 1: the neighbour cell and its offset.
       lkCellV := canIssue
@@ -438,6 +457,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // cycle accepting it, and a uniform cloud's coarse chunk has a dozen of its 43 visits empty.
       val lkEmpty = (0 until groups).map(g => io.lookup.begin(g) === io.lookup.end(g)).reduce(_ && _)
       lkq.io.enq.valid := lkPend && !lkEmpty
+      lkDrop := lkPend && lkEmpty
       lkq.io.enq.bits.begin := io.lookup.begin; lkq.io.enq.bits.end := io.lookup.end
       lkq.io.enq.bits.direct := false.B; lkq.io.enq.bits.tag := lkVisit
 
@@ -466,10 +486,12 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       }
     }
     is(S.largeLoad) {
+      // A large key is read into lKey and loaded the cycle after (the list's mux and the box's
+      // additions each take a cycle); the stream starts once the last one is in.
       when(lj =/= chunk.U && lIdx < io.largeCount) {
-        matcher.io.load.valid := true.B
+        lLoad := true.B; lKey := io.larges(VecIndex(lIdx, largeSlots))
         lj := lj + 1.U; lIdx := lIdx + 1.U
-      }.otherwise {
+      }.elsewhen(!lLoad) {
         state := S.largeStream; sent := false.B
       }
     }
@@ -538,7 +560,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     val it = stream.io.out.bits
     val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
     matcher.io.load.bits := Mux(state === S.largeLoad,
-      ChunkMember(io.larges(VecIndex(lIdx, largeSlots)), 0.U), ChunkMember(WorldKey(itemW, it.item, it.rec), place))
+      ChunkMember(lKey, 0.U), ChunkMember(WorldKey(itemW, it.item, it.rec), place))
   }
 
   // What each grid cycle went to: an entry through the stream, or why none went.

@@ -102,8 +102,8 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     if (drainBehind) Mux(bank, ids(1)(VecIndex(m, chunk)), ids(0)(VecIndex(m, chunk))) else members(VecIndex(m, chunk)).key.index
 
   /** The box filter of member box `a` and the probe's box `b` (widened by the slack). */
-  private def boxPass(a: ChunkMatcher.Box, b: ChunkMatcher.Box): Bool =
-    (0 until 3).map(ax => a.lo(ax) <= b.hi(ax) && b.lo(ax) <= a.hi(ax)).reduce(_ && _)
+  private def boxTests(a: ChunkMatcher.Box, b: ChunkMatcher.Box): Seq[Bool] =
+    (0 until 3).flatMap(ax => Seq(a.lo(ax) <= b.hi(ax), b.lo(ax) <= a.hi(ax)))
 
   /** The half-shell rule of a member at `place` for a probe of the visit at `off` (both from
     * the chunk's base cell): the member's own cell needs the larger index (`later`); else the
@@ -143,17 +143,30 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   private val probeNear = if (staged) stNear else inNear
   private val usedAt = if (staged) stUsed else used
   /** The near filter: hi_p - lo_m >= 0 and hi_m - lo_p >= 0 by their signs modulo 2^nearBits. */
-  private def nearPass(a: ChunkMatcher.NearBox, b: ChunkMatcher.NearBox): Bool =
-    (0 until 3).map(ax => !(b.hi(ax) -% a.lo(ax))(nearBits - 1) && !(a.hi(ax) -% b.lo(ax))(nearBits - 1)).reduce(_ && _)
+  private def nearTests(a: ChunkMatcher.NearBox, b: ChunkMatcher.NearBox): Seq[Bool] =
+    (0 until 3).flatMap(ax => Seq(!(b.hi(ax) -% a.lo(ax))(nearBits - 1), !(a.hi(ax) -% b.lo(ax))(nearBits - 1)))
   private val inCell = e.cell.zip(probe.cell).map { case (a, b) => a === b }.reduce(_ && _)
-  /** Which members come before the probe: a hit's order (i < j) is known when it is found. */
-  private val laterNow = VecInit((0 until chunk).map(m => e.index > memberIndex(cur, m.U))).asUInt
-  private val hitsNow = VecInit((0 until chunk).map { m =>
-    val mem = members(m)
+  /** Which members come before the probe: a hit's order (i < j) is known when it is found.
+    * With a hit queue, compared when the probe is taken and registered with it: the members it
+    * is compared with (those before stUsed) and the bank are the same then (a take's own load
+    * writes a later slot, and no clear comes with a take), and the index compare's carry chain
+    * then does not lead the box filter's into the hits. */
+  private val inLater = VecInit((0 until chunk).map(m => io.in.bits.key.index > memberIndex(cur, m.U))).asUInt
+  private val stLater = Reg(UInt(chunk.W))
+  if (staged) when(io.in.fire) { stLater := inLater }
+  private val laterNow = if (staged) stLater else inLater
+  /** Each member's six box-filter tests (two an axis), and whether its other conditions hold:
+    * loaded before the probe, and the cell rules. A hit needs all seven. */
+  private val boxNow = VecInit((0 until chunk).map { m =>
+    VecInit(if (m < wideSlots) boxTests(wideBoxes(m), probeBox) else nearTests(nearBoxes(m - wideSlots), probeNear)).asUInt
+  })
+  private val gateNow = VecInit((0 until chunk).map { m =>
     val later = laterNow(m)
-    val takes = Mux(probe.anyCell, !probe.own || later, inCell && owns(mem.place, probe.off, later))
-    m.U < usedAt && takes && (if (m < wideSlots) boxPass(wideBoxes(m), probeBox) else nearPass(nearBoxes(m - wideSlots), probeNear))
+    val takes = Mux(probe.anyCell, !probe.own || later, inCell && owns(members(m).place, probe.off, later))
+    m.U < usedAt && takes
   }).asUInt
+  private def hitsOf(box: Vec[UInt], gate: UInt): UInt = VecInit((0 until chunk).map(m => gate(m) && box(m).andR)).asUInt
+  private val hitsNow = hitsOf(boxNow, gateNow)
 
   // The streamed sphere being drained (its index) and the hits it still owes.
   private val pending = RegInit(0.U(chunk.W))
@@ -192,8 +205,14 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     // those before, so `hitQueue` spheres' hits still wait as without the stages.
     val q = Module(new Queue(new Hits, hitQueue + 2))
     val foundV = RegNext(stV, false.B)
-    val found = Reg(new Hits)
-    when(stV) { found.mask := hitsNow; found.later := laterNow; found.index := e.index; found.bank := cur }
+    // The tests are registered before they are combined: the box filter's compares (carry
+    // chains) and the AND of a member's seven conditions then take a cycle each.
+    val foundBox = Reg(chiselTypeOf(boxNow))
+    val foundGate = Reg(UInt(chunk.W))
+    val foundRest = Reg(new Hits) // its mask is foundBox and foundGate's
+    when(stV) { foundBox := boxNow; foundGate := gateNow; foundRest.later := laterNow; foundRest.index := e.index; foundRest.bank := cur }
+    val found = WireDefault(foundRest)
+    found.mask := hitsOf(foundBox, foundGate)
     // The queue's count, mirrored in a register of our own: the Queue's (a difference of its
     // pointers, not a power of two) was a long path into in.ready.
     val held = RegInit(0.U(log2Ceil(hitQueue + 3).W))
@@ -206,7 +225,8 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     when(q.io.deq.fire) { entry := q.io.deq.bits.index; pendBank := q.io.deq.bits.bank; pendLater := q.io.deq.bits.later }
     io.idle := !pending.orR && !q.io.deq.valid && !stV && !foundV
     // Hits of the chunk before still owed: at the queue's head, or found and not yet queued.
-    oldQueued := (q.io.deq.valid && q.io.deq.bits.bank =/= cur) || (foundV && found.mask.orR && found.bank =/= cur)
+    // (A found probe of the chunk before holds a clear back for its cycle, hits or none.)
+    oldQueued := (q.io.deq.valid && q.io.deq.bits.bank =/= cur) || (foundV && found.bank =/= cur)
   }
   io.canClear := (if (drainBehind) !pendOld && !oldQueued else io.idle)
 }
