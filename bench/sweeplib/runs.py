@@ -1,6 +1,8 @@
 """Scene runs through a configuration's `collide` binary, and the diamond's drift from ODE."""
+import functools
 import json
 import math
+import re
 import subprocess
 from pathlib import Path
 
@@ -24,6 +26,31 @@ def scene_file(scene, link: str = None, clock_mhz: float = None) -> Path:
     path = SCENES / f"{name}.json"
     write_atomic(path, json.dumps(s, indent=2) + "\n")
     return path
+
+
+def preset_clocks(info_text: str) -> dict:
+    """{preset: its clock in MHz} from `collide info --links`: each preset's header line
+    ("qpi (also harp1): ..." or "ideal: ...") then its "  clock N MHz" line."""
+    out, name = {}, None
+    for line in info_text.splitlines():
+        head = re.match(r"^([A-Za-z0-9_-]+)(?: \(also [^)]*\))?: ", line)
+        if head:
+            name = head.group(1)
+            continue
+        m = re.match(r"^\s+clock ([0-9.]+) MHz", line)
+        if m and name and name not in out:
+            out[name] = float(m.group(1))
+    return out
+
+
+@functools.lru_cache(maxsize=None)
+def preset_clock(binary: Path, preset: str) -> float:
+    """The clock (MHz) the host's link preset `preset` runs its AFU at."""
+    r = subprocess.run([str(binary), "info", "--links"], capture_output=True, text=True)
+    clocks = preset_clocks(r.stdout) if r.returncode == 0 else {}
+    if preset not in clocks:
+        raise RuntimeError(f"{binary} info --links: no clock for link preset '{preset}' (found {sorted(clocks)})")
+    return clocks[preset]
 
 
 def run(binary: Path, scene, backend: str, out_dir: Path, link: str = None, cpu_repeat: int = 1,

@@ -82,15 +82,27 @@ class Runner:
     def run_key(self, cfg, link) -> dict:
         """What a run's result depends on: the sources and settings, and for a run at the cells'
         clock that clock (which moves with the timing proxy)."""
-        return self.key | ({"clock_mhz": self.cells_mhz(cfg)} if link and link.endswith(AT_CELLS) else {})
+        return self.key | ({"clock_mhz": self.at_cells_mhz(cfg, link)} if link and link.endswith(AT_CELLS) else {})
+
+    def at_cells_mhz(self, cfg, link) -> float:
+        """The clock of a `<preset>@cells` run: what the AFU's cells allow, but never above the
+        preset's own clock (a design that reaches more still runs at its target's)."""
+        return min(self.cells_mhz(cfg), self.preset_clock(cfg, link[:-len(AT_CELLS)]))
+
+    def preset_clock(self, cfg, preset: str) -> float:
+        return runs.preset_clock(build.binary(cfg), preset)
+
+    def has_binary(self, cfg) -> bool:
+        return build.binary(cfg).exists()
 
     def cached(self, d: Path, cfg=None, link=None):
         """A run's summary if it was made with today's sources and settings."""
         k, s = d / "key.json", d / "summary.json"
         if not (k.exists() and s.exists()):
             return None
-        if link and link.endswith(AT_CELLS) and not all(self.timed(cfg, p, only_cached=True) for p in TIMING_PARTS):
-            return None
+        if link and link.endswith(AT_CELLS) and not (all(self.timed(cfg, p, only_cached=True) for p in TIMING_PARTS)
+                                                     and self.has_binary(cfg)):
+            return None  # its clock needs both parts' timing and the binary's link presets
         return json.loads(s.read_text()) if json.loads(k.read_text()) == self.run_key(cfg, link) else None
 
     def run_dir(self, cfg, scene, backend, link) -> Path:

@@ -183,6 +183,8 @@ class Caching(unittest.TestCase):
             clock = {"mhz": 29.123}
             r.timed = lambda cfg, part, only_cached=False: True
             r.cells_mhz = lambda cfg: clock["mhz"]
+            r.preset_clock = lambda cfg, preset: {"ideal": 200.0}[preset]
+            r.has_binary = lambda cfg: True
             run, cfg = Path(d), Config(16, "fp32")
             (run / "summary.json").write_text(json.dumps({"pairs": 1}))
             (run / "key.json").write_text(json.dumps(r.run_key(cfg, "ideal@cells")))
@@ -193,6 +195,21 @@ class Caching(unittest.TestCase):
             self.assertIsNone(r.cached(run, cfg, "ideal@cells"))
             r.timed = lambda cfg, part, only_cached=False: False  # and while the timing is not cached
             self.assertIsNone(r.cached(run, cfg, "ideal@cells"))
+
+    def test_a_run_at_the_cells_clock_never_runs_above_its_presets_own_clock(self):
+        r = sweep.Runner.__new__(sweep.Runner)
+        r.key = {"rtl": "abc", "host": "def", "cpu_repeat": 20}
+        r.cells_mhz = lambda cfg: 202.1
+        r.preset_clock = lambda cfg, preset: {"qpi": 200.0, "harp2": 400.0}[preset]
+        cfg = Config(16, "fp32")
+        self.assertEqual(r.run_key(cfg, "qpi@cells")["clock_mhz"], 200.0)
+        self.assertEqual(r.run_key(cfg, "harp2@cells")["clock_mhz"], 202.1)
+
+    def test_each_link_presets_clock_is_read_from_the_hosts_own_list(self):
+        text = ("link presets (collide run/pairs --link NAME):\n\nideal: preloaded data\n"
+                "  clock 200 MHz (AFU port 12.8 GB/s a direction), 64 reads\n  sources:\n    - clock 1 MHz: not this\n\n"
+                "qpi (also harp1): HARP v1\n  clock 200 MHz (AFU port)\n\nharp2: HARP v2\n  clock 400 MHz (AFU port)\n")
+        self.assertEqual(runs.preset_clocks(text), {"ideal": 200.0, "qpi": 200.0, "harp2": 400.0})
 
 
 class Clock(unittest.TestCase):
