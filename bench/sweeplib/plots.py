@@ -208,4 +208,4 @@ def smoke(rows, out):
 def draw(name, rows, out: Path):
     out.mkdir(parents=True, exist_ok=True)
     # isoarea and smoke: tables only
-    return {"paper": paper, "scpus": scpus, "arith": arith, "links": links}.get(name, smoke)(rows, out)
+    return {"paper": paper, "scpus": scpus, "arith": arith, "arith200": arith, "links": links}.get(name, smoke)(rows, out)
