@@ -183,10 +183,18 @@ object AfuConfig {
     world = world.world.map(_.copy(lanes = 32, sortPorts = 16, clearBehind = true)),
     worldLineQueue = 256, startAhead = true)
 
+  /** World mode on the paper's part: the `world` preset cut to fit the Stratix V GX A7
+    * (5SGXEA7) of HARP v1, whose 234,720 ALMs hold neither the `world` preset's 16-lane broad
+    * phase nor its 16 SCPUs at the depth that reaches 200 MHz. Half the lanes (the broad phase's
+    * logic is mostly per lane) and four SCPUs (four pairs a cycle is more than eight lanes find:
+    * bench/results/world-fit measures both, and the area proxy's ALMs against the part). */
+  val worldFit: AfuConfig = world.copy(name = "world-fit", scpus = 4,
+    world = world.world.map(_.copy(lanes = 8)), device = Device.stratixVA7)
+
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */
   val cosim: AfuConfig = default.copy(name = "cosim", scpuImpl = ScpuImpl.Model)
 
-  val all: Seq[AfuConfig] = Seq(default, cosim, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big, world, world32)
+  val all: Seq[AfuConfig] = Seq(default, cosim, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big, world, worldFit, world32)
   val presets: Map[String, AfuConfig] = all.map(c => c.name -> c).toMap
 }
