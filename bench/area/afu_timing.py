@@ -16,7 +16,9 @@ it, and the commit of the RTL. Cached by each block's Verilog (bench/sweeplib/ar
 blocks whose module name matches (for example `--only Scpu_` to compare SCPU configurations).
 Without `--only`, each folder also gets its timing.json (bench/area/reached_clock.py).
 `--area` also runs the area proxy (bench/area/yosys_area.sh) on each block as it is cut, and adds
-its LUT cells, arithmetic cells, DSP blocks and flip-flops: what a shorter path costs.
+its LUT cells, arithmetic cells, DSP blocks and flip-flops: what a shorter path costs. Without it,
+those columns are filled for the blocks whose area is already cached, and left empty otherwise;
+a folder whose every block has them gets its area against its part in timing.json.
 """
 import argparse
 import csv
@@ -91,7 +93,7 @@ def main(argv=None):
                          **{f"{f}_mhz": mhz(r[f"{f}_ps"]) for f in area.TIMING_FAMILIES},
                          "path_from": r["path_from"], "path_to": r["path_to"], "path_luts": r["path_luts"],
                          "path_carry": r["path_carry"], "path_dsp": r["path_dsp"], "black_boxes": what, "commit": commit})
-            if a.area:
+            if a.area or area.is_cached(sv, mod, config_id, black):  # an area already measured is reported
                 print(f"area {mod} ...", flush=True)
                 cells = area.synth(sv, mod, area.BUILD / "logs" / "area", config_id, black)
                 rows[-1] |= {k: cells[k] for k in AREA}
@@ -99,7 +101,7 @@ def main(argv=None):
         raise SystemExit(f"--only {a.only!r}: no block of {', '.join(a.folders)} matches")
     Path(a.out).parent.mkdir(parents=True, exist_ok=True)
     with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=FIELDS + (AREA if a.area else []))
+        w = csv.DictWriter(f, fieldnames=FIELDS + AREA)
         w.writeheader()
         w.writerows(rows)
     fam = area.TIMING_FAMILIES

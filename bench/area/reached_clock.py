@@ -24,6 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 import area  # noqa: E402
+import isoarea  # noqa: E402
 
 PNR_CSV = ROOT / "bench/results/pnr/operators.csv"
 
@@ -55,7 +56,7 @@ def describe(folder: Path, rows, commit: str, pnr_csv: Path = PNR_CSV) -> dict:
             raise SystemExit(f"{folder}: no timed block for {fam}")
         families[fam] = {"slowest_block": worst["module"], "cells_ps": ps, "proxy_mhz": round(1e6 / ps, 2),
                          "routed_estimate_mhz": round(1e6 / (ps * ratio), 2)}
-    return {
+    out = {
         "what": "the clock this Verilog reaches by the timing proxy: Yosys sta over each family's cell delays, "
                 "block by block, no routing (an upper bound on the frequency); routed_estimate_mhz divides it by the "
                 "median routed/cells-only ratio of the ECP5 place and route (a model)",
@@ -64,6 +65,34 @@ def describe(folder: Path, rows, commit: str, pnr_csv: Path = PNR_CSV) -> dict:
         "families": families,
         "routing_model": {"ratio": round(ratio, 3), "operators": n, "source": "bench/results/pnr/operators.csv"},
     }
+    fit = area_on_part(folder, rows)
+    if fit:
+        out["area"] = fit
+    return out
+
+
+AREA = ("luts", "arith", "ff", "dsp")
+
+
+def area_on_part(folder: Path, rows):
+    """The area proxy's cells summed over the folder's blocks (each times its count; RAMs are
+    black boxes, counted by the generator's M20K estimate instead) and the ALMs they take
+    against the part its manifest names: None unless every block has its area."""
+    if not all(r.get(k) not in (None, "") for r in rows for k in AREA):
+        return None
+    total = {k: sum(int(r["count"]) * int(r[k]) for r in rows) for k in AREA}
+    alms = {c: isoarea.alms(total["luts"], total["arith"], total["ff"], c) for c in isoarea.CALIBRATIONS}
+    out = {"what": "the area proxy (Yosys synth_intel_alm, Cyclone V cells) over every block, RAMs apart; ALMs "
+                   "packed: max((LUT + adder cells) / 2, FFs / 4), a lower bound; unpacked: LUT + adder cells, "
+                   "one LUT an ALM, an upper bound",
+           **total, "alms": alms}
+    manifest = folder / "manifest.json"
+    device = json.loads(manifest.read_text()).get("device") if manifest.exists() else None
+    if device:
+        out["device"] = {"name": device["name"], "alms": device["alms"], "dsp_blocks": device["dspBlocks"],
+                         "alms_share": {c: round(v / device["alms"], 3) for c, v in alms.items()},
+                         "dsp_share": round(total["dsp"] / device["dspBlocks"], 3)}
+    return out
 
 
 def write(folder: Path, rows, commit: str) -> Path:

@@ -92,8 +92,8 @@ def _cache(text: str, top: str, config_id: str, black=()):
     return pre, mods, CACHE / f"{generic_top}-{key}.json"
 
 
-def is_cached(sv: Path, top: str, config_id: str) -> bool:
-    return _cache(sv.read_text(), top, config_id)[2].exists()
+def is_cached(sv: Path, top: str, config_id: str, black=()) -> bool:
+    return _cache(sv.read_text(), top, config_id, black)[2].exists()
 
 
 def _job(sv: Path, top: str, log_dir: Path, config_id: str, black, kind: str):

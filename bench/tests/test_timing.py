@@ -174,15 +174,19 @@ class AfuTimingCli(unittest.TestCase):
                 rows = list(csv.DictReader(out.open()))
                 afu_timing.main([d, "--only", "^Scpu_", "--out", str(out)])
                 plain = list(csv.DictReader(out.open()))
+                (Path(d) / "Afu_t.sv").write_text(sv.replace("s <= ra + rb", "s <= ra - rb"))
+                afu_timing.main([d, "--only", "^Scpu_", "--out", str(out)])
+                other = list(csv.DictReader(out.open()))
             finally:
                 area.CACHE, area.BUILD = saved
         self.assertEqual([(r["module"], r["count"]) for r in rows], [("Scpu_t", "2")])
         self.assertEqual(rows[0]["ff"], "24")
         self.assertGreater(int(rows[0]["arith"]) + int(rows[0]["luts"]), 0)
         self.assertEqual(rows[0]["path_to"], "s")
-        # Without --area the columns are the timing's alone.
-        self.assertNotIn("ff", plain[0])
+        # Without --area, an area already measured for this Verilog is reported; none for other Verilog.
+        self.assertEqual(plain[0]["ff"], "24")
         self.assertEqual(plain[0]["cyclonev_ps"], rows[0]["cyclonev_ps"])
+        self.assertEqual([other[0][k] for k in ("luts", "arith", "dsp", "ff")], ["", "", "", ""])
 
 
 class CommittedResults(unittest.TestCase):
@@ -235,6 +239,29 @@ class ReachedClock(unittest.TestCase):
             with self.assertRaises(SystemExit) as e:
                 reached_clock.describe(Path(d) / "z", rows, "abc1234", pnr)
             self.assertIn("no rows of it", str(e.exception))
+
+    def test_a_folder_whose_blocks_all_have_their_area_gets_its_alms_against_its_part(self):
+        import json
+        import reached_clock
+        with tempfile.TemporaryDirectory() as d:
+            folder = Path(d) / "x"
+            folder.mkdir()
+            (folder / "Afu_x.sv").write_text("module Afu_x; endmodule\n")
+            (folder / "manifest.json").write_text(json.dumps({"device": {"name": "P", "alms": 1000, "dspBlocks": 10}}))
+            rows = [{"folder": "x", "module": "A", "count": "1", "cyclonev_ps": "5000", "arriav_ps": "4000",
+                     "luts": "100", "arith": "40", "ff": "400", "dsp": "1"},
+                    {"folder": "x", "module": "S", "count": "3", "cyclonev_ps": "4000", "arriav_ps": "3000",
+                     "luts": "50", "arith": "20", "ff": "40", "dsp": "2"}]
+            pnr = Path(d) / "pnr.csv"
+            pnr.write_text("op,routed_over_cyclonev\nadd,1.5\n")
+            a = reached_clock.describe(folder, rows, "abc1234", pnr)["area"]
+            # 250 LUTs, 100 adder cells, 520 FFs, 7 DSPs: packed max(175, 130), unpacked 350.
+            self.assertEqual((a["luts"], a["arith"], a["ff"], a["dsp"]), (250, 100, 520, 7))
+            self.assertEqual(a["alms"], {"packed": 175, "unpacked": 350})
+            self.assertEqual(a["device"]["alms_share"], {"packed": 0.175, "unpacked": 0.35})
+            self.assertEqual(a["device"]["dsp_share"], 0.7)
+            rows[1]["ff"] = ""  # one block without its area: no area at all, rather than a partial sum
+            self.assertNotIn("area", reached_clock.describe(folder, rows, "abc1234", pnr))
 
     def test_the_committed_timing_json_describes_the_committed_verilog_and_afu_csv(self):
         import json

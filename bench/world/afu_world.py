@@ -1,5 +1,5 @@
 """World mode on the AFU against the CPU: `collide spheres --afu generated/world` (the AFU's
-broad phase and 16 fp32 SCPUs, Verilated, behind the link model) on the clouds of world.py,
+broad phase and its SCPUs, Verilated, behind the link model; --afu another world folder) on the clouds of world.py,
 beside ODE's sweep-and-prune space + dCollide and the simd backend (our grid + the binary32
 kernel) measured on the same spheres in the same run. Above the world preset's 4,096 spheres
 the host cuts the world into slabs along x or boxes along x and y, whichever carries the fewest
@@ -79,7 +79,7 @@ def main(argv=None):
             ap.error(f"--clouds: unknown cloud {kind!r} (known: {', '.join(CLOUDS)})")
     earlier = out / "world-afu.csv"
     if a.report_only:
-        report(read_rows(earlier), out, (out / "MACHINE.md").read_text(), *lanes_of(a.afu), compare=compared(a.compare))
+        report(read_rows(earlier), out, (out / "MACHINE.md").read_text(), **lanes_of(a.afu), compare=compared(a.compare))
         return 0
     start = world.machine()
     # Kept rows are written back as read (their text), and parsed for the report.
@@ -143,14 +143,14 @@ def main(argv=None):
     else:
         (out / "refused.txt").unlink(missing_ok=True)
     machine_md = world.write_results(out, "world-afu.csv", text_rows, "bench/world/afu_world.py", argv,
-                                     f"{a.collide}: collide_world, which tools/test's Release build makes: "
-                                     "the CLI with generated/world's AFU Verilated in"
+                                     f"{a.collide}: the CLI with {lanes_of(a.afu)['afu']}'s AFU Verilated in "
+                                     "(collide_world: tools/test's Release build makes it from generated/world)"
                                      + (f"; {a.built}" if a.built else ""), start)
     if kept:  # the kept rows' command and machine stay beside this run's
         old = kept_sections(earlier_machine, sorted({r["cloud"] for r in kept}), clouds)
         machine_md = old + "\n\n" + machine_md.replace("## How and where", "## How and where: " + ", ".join(clouds), 1)
         (out / "MACHINE.md").write_text(machine_md)
-    report(rows, out, machine_md, *lanes_of(a.afu), compare=compared(a.compare))
+    report(rows, out, machine_md, **lanes_of(a.afu), compare=compared(a.compare))
     return 0
 
 
@@ -194,15 +194,17 @@ def read_rows(path):
 def lanes_of(afu):
     """The broad phase's candidate lanes and sort ports, from the AFU's manifest (1 before each
     was built)."""
-    bp = json.loads((Path(afu) / "manifest.json").read_text())["afu"].get("broadPhase") or {}
-    return int(bp.get("lanes", 1)), int(bp.get("sortPorts", 1))
+    m = json.loads((Path(afu) / "manifest.json").read_text())
+    bp = m["afu"].get("broadPhase") or {}
+    return {"lanes": int(bp.get("lanes", 1)), "ports": int(bp.get("sortPorts", 1)),
+            "scpus": f"{m['afu']['scpus']} {m['scpu']['name']}", "afu": f"generated/{Path(afu).name}"}
 
 
-def report(rows, out, machine_md, lanes, ports=1, compare=None):
+def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32", afu="generated/world"):
     plural = "s" if lanes > 1 else ""
     spheres_a_cycle = f"{ports} sphere{'s' if ports > 1 else ''} a cycle"
     lines = ["# World mode on the AFU against ODE and the CPU grid", "",
-             f"`collide spheres --afu generated/world` (the on-chip broad phase, {lanes} candidate lane{plural} and its sort's passes {spheres_a_cycle}, and 16 fp32",
+             f"`collide spheres --afu {afu}` (the on-chip broad phase, {lanes} candidate lane{plural} and its sort's passes {spheres_a_cycle}, and {scpus}",
              "SCPUs; time modelled by the link model; above 4,096 spheres the host cuts the world into slabs",
              "along x or boxes along x and y, whichever carries the fewest spheres (a run counting for 256), one AFU run each, all in one call",
              "through the AFU's run queue where the manifest has one: each run's table loads, and is fed to the broad",

@@ -20173,7 +20173,18 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
            : _matcher_io_in_ready)
       : ~_GEN_17 & _GEN_14 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
   wire        singleAt = issueOk & ~inUnit ? io_claim_bits_single : single;
-  wire [13:0] _GEN_24 = {issueAt[13:5], 5'h0};
+  wire        before_0 = issueAt[13:5] < io_walkBuckets[13:5];
+  wire        atEnd = issueAt[13:5] == io_walkBuckets[13:5];
+  wire        _fine_T_4 = vIssue[3:0] == 4'h2;
+  wire        _fine_T_6 = vIssue[3:0] == 4'h4;
+  wire        _fine_T_7 = vIssue[3:0] == 4'h5;
+  wire        _fine_T_8 = vIssue[3:0] == 4'h6;
+  wire        _fine_T_9 = vIssue[3:0] == 4'h7;
+  wire        _fine_T_10 = vIssue[3:0] == 4'h8;
+  wire        _fine_T_12 = vIssue[3:0] == 4'hA;
+  wire        _fine_T_13 = vIssue[3:0] == 4'hB;
+  wire        _fine_T_14 = vIssue[3:0] == 4'hC;
+  wire        _fine_T_15 = vIssue[3:0] == 4'hD;
   wire        _off_T_3 = vIssue == 6'h1;
   wire        _off_T_4 = vIssue == 6'h2;
   wire        _off_T_5 = vIssue == 6'h3;
@@ -20206,16 +20217,6 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
   wire        _off_T_34 = vIssue == 6'h20;
   wire        _off_T_35 = vIssue == 6'h21;
   wire        _off_T_36 = vIssue == 6'h22;
-  wire        _off_T_566 = vIssue[3:0] == 4'h2;
-  wire        _off_T_568 = vIssue[3:0] == 4'h4;
-  wire        _off_T_569 = vIssue[3:0] == 4'h5;
-  wire        _off_T_570 = vIssue[3:0] == 4'h6;
-  wire        _off_T_571 = vIssue[3:0] == 4'h7;
-  wire        _off_T_572 = vIssue[3:0] == 4'h8;
-  wire        _off_T_574 = vIssue[3:0] == 4'hA;
-  wire        _off_T_575 = vIssue[3:0] == 4'hB;
-  wire        _off_T_576 = vIssue[3:0] == 4'hC;
-  wire        _off_T_577 = vIssue[3:0] == 4'hD;
   wire [2:0]  off_0 =
     coarseCh
       ? {1'h0,
@@ -20225,8 +20226,8 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
          _off_T_4 | _off_T_5 | _off_T_9 | _off_T_10 | _off_T_11 | _off_T_13 | _off_T_15
            | _off_T_16 | _off_T_17 | _off_T_18 | _off_T_23 | _off_T_26}
       : {2'h0,
-         _off_T_569 | _off_T_570 | _off_T_571 | _off_T_572 | vIssue[3:0] == 4'h9
-           | _off_T_574 | _off_T_575 | _off_T_576 | _off_T_577};
+         _fine_T_7 | _fine_T_8 | _fine_T_9 | _fine_T_10 | vIssue[3:0] == 4'h9 | _fine_T_12
+           | _fine_T_13 | _fine_T_14 | _fine_T_15};
   wire [2:0]  off_1 =
     coarseCh
       ? {3{_off_T_16}} | {3{_off_T_17}} | {3{_off_T_19}} | {3{_off_T_20}} | {3{_off_T_23}}
@@ -20236,10 +20237,10 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
              | _off_T_14 | _off_T_15 | _off_T_33 | _off_T_34 | _off_T_35 | _off_T_36,
            _off_T_3 | _off_T_5 | _off_T_6 | _off_T_9 | _off_T_29 | _off_T_30 | _off_T_31
              | _off_T_32}
-      : {3{_off_T_569}} | {3{_off_T_570}} | {3{_off_T_571}}
+      : {3{_fine_T_7}} | {3{_fine_T_8}} | {3{_fine_T_9}}
         | {2'h0,
-           _off_T_566 | vIssue[3:0] == 4'h3 | _off_T_568 | _off_T_575 | _off_T_576
-             | _off_T_577};
+           _fine_T_4 | vIssue[3:0] == 4'h3 | _fine_T_6 | _fine_T_13 | _fine_T_14
+             | _fine_T_15};
   wire [2:0]  off_2 =
     coarseCh
       ? {3{_off_T_6}} | {3{_off_T_7}} | {3{_off_T_9}} | {3{_off_T_10}} | {3{_off_T_16}}
@@ -20250,32 +20251,32 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
              | _off_T_26 | _off_T_27 | _off_T_28 | _off_T_32 | _off_T_36,
            _off_T_12 | _off_T_13 | _off_T_23 | _off_T_24 | _off_T_25 | _off_T_31
              | _off_T_35}
-      : {3{_off_T_566}} | {3{_off_T_569}} | {3{_off_T_572}} | {3{_off_T_575}}
-        | {2'h0, vIssue[3:0] == 4'h1 | _off_T_568 | _off_T_571 | _off_T_574 | _off_T_577};
+      : {3{_fine_T_4}} | {3{_fine_T_7}} | {3{_fine_T_10}} | {3{_fine_T_13}}
+        | {2'h0, vIssue[3:0] == 4'h1 | _fine_T_6 | _fine_T_9 | _fine_T_12 | _fine_T_15};
   wire [28:0] _lkHash_mask_T = 29'h1 << io_usedLog2;
-  wire        _GEN_25 = _GEN_0 | ~_GEN_2;
-  wire        _GEN_26 = _GEN_6 | ~_GEN_5;
-  wire        _GEN_27 = _GEN_0 | ~_GEN_1 | _GEN_6 | ~_GEN_5;
-  wire        _GEN_28 = _stream_io_req_ready & _GEN_15;
-  wire        _GEN_29 = _GEN_28 & ~sent;
-  wire        _GEN_30 = _GEN_11 | ~(_GEN_9 & _GEN_29);
-  wire        _GEN_31 = _GEN_11 | ~_GEN_9;
-  wire        _GEN_32 =
+  wire        _GEN_24 = _GEN_0 | ~_GEN_2;
+  wire        _GEN_25 = _GEN_6 | ~_GEN_5;
+  wire        _GEN_26 = _GEN_0 | ~_GEN_1 | _GEN_6 | ~_GEN_5;
+  wire        _GEN_27 = _stream_io_req_ready & _GEN_15;
+  wire        _GEN_28 = _GEN_27 & ~sent;
+  wire        _GEN_29 = _GEN_11 | ~(_GEN_9 & _GEN_28);
+  wire        _GEN_30 = _GEN_11 | ~_GEN_9;
+  wire        _GEN_31 =
     vIssue == visitCount & ~lkCellV & {lkHashing_1, lkHashing_0} == 2'h0 & ~lkHashV
     & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
-  wire        _GEN_33 = moreOfCell | nextSet;
-  wire        _GEN_34 = _GEN_32 & _GEN_33;
-  wire        _GEN_35 = _GEN_9 & _GEN_32 & _GEN_33 & ~moreOfCell;
-  wire        _GEN_36 = lj != 6'h20 & lIdx < {1'h0, io_largeCount};
-  wire        _GEN_37 = _GEN_0 | _GEN_1 | _GEN_9;
-  wire        _GEN_38 = _GEN_36 | lLoad;
+  wire        _GEN_32 = moreOfCell | nextSet;
+  wire        _GEN_33 = _GEN_31 & _GEN_32;
+  wire        _GEN_34 = _GEN_9 & _GEN_31 & _GEN_32 & ~moreOfCell;
+  wire        _GEN_35 = lj != 6'h20 & lIdx < {1'h0, io_largeCount};
+  wire        _GEN_36 = _GEN_0 | _GEN_1 | _GEN_9;
+  wire        _GEN_37 = _GEN_35 | lLoad;
   wire [6:0]  nextLi = {1'h0, li} + 7'h20;
-  wire        _GEN_39 = _GEN_14 & _GEN_18;
-  wire        _GEN_40 =
+  wire        _GEN_38 = _GEN_14 & _GEN_18;
+  wire        _GEN_39 =
     _GEN_19 & _stream_io_out_bits_tag_scan & _GEN_20 & take & ~haveCell;
-  wire        _GEN_41 = ~_stream_io_out_bits_mark & haveCell;
-  wire        _GEN_42 =
-    _GEN_19 & _stream_io_out_bits_tag_scan & _GEN_20 & _GEN_41 & ~same & ~nextSet;
+  wire        _GEN_40 = ~_stream_io_out_bits_mark & haveCell;
+  wire        _GEN_41 =
+    _GEN_19 & _stream_io_out_bits_tag_scan & _GEN_20 & _GEN_40 & ~same & ~nextSet;
   always @(posedge clock) begin
     if (reset) begin
       state <= 3'h0;
@@ -20312,19 +20313,19 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
                 {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
           end
           walkPend <= ~_GEN_7 & issueOk;
-          if (_GEN_26)
+          if (_GEN_25)
             inUnit <= ~issueOk & inUnit;
           else
             inUnit <= ~asCoarse & lane[2:0] != 3'h7 & ~single;
-          lkPend <= _GEN_26 & lkPend;
-          lkCellV <= _GEN_26 & lkCellV;
-          lkHashing_0 <= _GEN_26 & lkHashing_0;
-          lkHashing_1 <= _GEN_26 & lkHashing_1;
-          lkHashV <= _GEN_26 & lkHashV;
+          lkPend <= _GEN_25 & lkPend;
+          lkCellV <= _GEN_25 & lkCellV;
+          lkHashing_0 <= _GEN_25 & lkHashing_0;
+          lkHashing_1 <= _GEN_25 & lkHashing_1;
+          lkHashV <= _GEN_25 & lkHashV;
         end
         else begin
           if (_GEN_9) begin
-            if (~_GEN_32 | _GEN_33) begin
+            if (~_GEN_31 | _GEN_32) begin
             end
             else
               state <= 3'h1;
@@ -20335,14 +20336,14 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
             lkHashV <= lkHashing_1;
           end
           else if (_GEN_13) begin
-            if (_GEN_38) begin
+            if (_GEN_37) begin
             end
             else
               state <= 3'h4;
           end
-          else if (_GEN_39)
+          else if (_GEN_38)
             state <= {1'h0, {2{nextLi < {2'h0, io_largeCount}}}};
-          walkPend <= (~(_GEN_9 & _GEN_32) | _GEN_33) & walkPend;
+          walkPend <= (~(_GEN_9 & _GEN_31) | _GEN_32) & walkPend;
         end
         deferPend <= _GEN_1 & _GEN_6 | ~io_deferOk & deferPend;
       end
@@ -20354,11 +20355,11 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       end
       else
         single <= io_claim_bits_single;
-      if (_GEN_25) begin
+      if (_GEN_24) begin
       end
       else
         unitFirst <= ~inUnit & ~io_claim_bits_single;
-      if (_GEN_27) begin
+      if (_GEN_26) begin
       end
       else
         coarseCh <= asCoarse;
@@ -20366,7 +20367,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
         lkTotal + {3'h0, ~_GEN_11 & _GEN_9 & canIssue}
         - {3'h0, _GEN_12 & _lkq_io_deq_valid}
         - {3'h0, ~_GEN_11 & _GEN_9 & lkPend & lkEmpty};
-      lLoad <= ~_GEN_37 & _GEN_13 & _GEN_36;
+      lLoad <= ~_GEN_36 & _GEN_13 & _GEN_35;
     end
     if (_GEN_0) begin
       if (io_start)
@@ -20378,7 +20379,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       else
         bIssue <= (&lane) ? afterWord : {walkB[13:5], lane + 5'h1};
       if (_GEN_1) begin
-        if (_GEN_26) begin
+        if (_GEN_25) begin
         end
         else begin
           p_0 <= asCoarse ? decGroup_0_0 : decBucket_0_0;
@@ -20386,8 +20387,8 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
           p_2 <= asCoarse ? decGroup_2_0 : decBucket_2_0;
           p_3 <= asCoarse ? decGroup_3_0 : decBucket_3_0;
         end
-        sent <= _GEN_26 & sent;
-        if (_GEN_26) begin
+        sent <= _GEN_25 & sent;
+        if (_GEN_25) begin
         end
         else
           vIssue <= 6'h0;
@@ -20400,7 +20401,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
         end
       end
       else begin
-        if (_GEN_35) begin
+        if (_GEN_34) begin
           if (|nextGroup)
             p_0 <= bEnd_0;
           else if (nextGroup == 2'h0)
@@ -20414,142 +20415,140 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
           else if (nextGroup == 2'h2)
             p_2 <= nextLeader;
         end
-        if (_GEN_9 & _GEN_32 & _GEN_33 & ~moreOfCell & (&nextGroup))
+        if (_GEN_9 & _GEN_31 & _GEN_32 & ~moreOfCell & (&nextGroup))
           p_3 <= nextLeader;
         if (_GEN_9) begin
-          sent <= ~_GEN_34 & (_GEN_29 | sent);
-          if (_GEN_34)
+          sent <= ~_GEN_33 & (_GEN_28 | sent);
+          if (_GEN_33)
             vIssue <= 6'h0;
           else if (canIssue)
             vIssue <= vIssue + 6'h1;
         end
         else if (_GEN_13) begin
-          sent <= _GEN_38 & sent;
-          if (_GEN_36) begin
+          sent <= _GEN_37 & sent;
+          if (_GEN_35) begin
             lj <= lj + 6'h1;
             lIdx <= lIdx + 6'h1;
           end
         end
         else begin
-          sent <= _GEN_14 & _GEN_28 | sent;
-          if (_GEN_39) begin
+          sent <= _GEN_14 & _GEN_27 | sent;
+          if (_GEN_38) begin
             lj <= 6'h0;
             lIdx <= nextLi[5:0];
           end
         end
-        if (_GEN_16 | ~_GEN_39) begin
+        if (_GEN_16 | ~_GEN_38) begin
         end
         else
           li <= nextLi[5:0];
       end
     end
-    if (_GEN_25) begin
+    if (_GEN_24) begin
     end
     else begin
       walkB <= issueAt;
       inWalk_0 <=
-        issueAt[4:0] == 5'h0 & {issueAt[13:5], 5'h0} < io_walkBuckets
+        issueAt[4:0] == 5'h0 & (before_0 | atEnd & (|(io_walkBuckets[4:0])))
         & (singleAt ? issueAt[4:0] == 5'h0 : ~(|(issueAt[4:3])));
       inWalk_1 <=
-        issueAt[4:0] < 5'h2 & _GEN_24 + 14'h1 < io_walkBuckets
+        issueAt[4:0] < 5'h2 & (before_0 | atEnd & (|(io_walkBuckets[4:1])))
         & (singleAt ? issueAt[4:0] == 5'h1 : ~(|(issueAt[4:3])));
       inWalk_2 <=
-        issueAt[4:0] < 5'h3 & _GEN_24 + 14'h2 < io_walkBuckets
+        issueAt[4:0] < 5'h3 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h2)
         & (singleAt ? issueAt[4:0] == 5'h2 : ~(|(issueAt[4:3])));
       inWalk_3 <=
-        issueAt[4:0] < 5'h4 & _GEN_24 + 14'h3 < io_walkBuckets
+        issueAt[4:0] < 5'h4 & (before_0 | atEnd & (|(io_walkBuckets[4:2])))
         & (singleAt ? issueAt[4:0] == 5'h3 : ~(|(issueAt[4:3])));
       inWalk_4 <=
-        issueAt[4:0] < 5'h5 & _GEN_24 + 14'h4 < io_walkBuckets
+        issueAt[4:0] < 5'h5 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h4)
         & (singleAt ? issueAt[4:0] == 5'h4 : ~(|(issueAt[4:3])));
       inWalk_5 <=
-        issueAt[4:0] < 5'h6 & _GEN_24 + 14'h5 < io_walkBuckets
+        issueAt[4:0] < 5'h6 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h5)
         & (singleAt ? issueAt[4:0] == 5'h5 : ~(|(issueAt[4:3])));
       inWalk_6 <=
-        issueAt[4:0] < 5'h7 & _GEN_24 + 14'h6 < io_walkBuckets
+        issueAt[4:0] < 5'h7 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h6)
         & (singleAt ? issueAt[4:0] == 5'h6 : ~(|(issueAt[4:3])));
       inWalk_7 <=
-        issueAt[4:0] < 5'h8 & _GEN_24 + 14'h7 < io_walkBuckets
+        issueAt[4:0] < 5'h8 & (before_0 | atEnd & (|(io_walkBuckets[4:3])))
         & (singleAt ? issueAt[4:0] == 5'h7 : ~(|(issueAt[4:3])));
       inWalk_8 <=
-        issueAt[4:0] < 5'h9 & _GEN_24 + 14'h8 < io_walkBuckets
+        issueAt[4:0] < 5'h9 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h8)
         & (singleAt ? issueAt[4:0] == 5'h8 : issueAt[4:3] == 2'h1);
       inWalk_9 <=
-        issueAt[4:0] < 5'hA & _GEN_24 + 14'h9 < io_walkBuckets
+        issueAt[4:0] < 5'hA & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h9)
         & (singleAt ? issueAt[4:0] == 5'h9 : issueAt[4:3] == 2'h1);
       inWalk_10 <=
-        issueAt[4:0] < 5'hB & _GEN_24 + 14'hA < io_walkBuckets
+        issueAt[4:0] < 5'hB & (before_0 | atEnd & io_walkBuckets[4:0] > 5'hA)
         & (singleAt ? issueAt[4:0] == 5'hA : issueAt[4:3] == 2'h1);
       inWalk_11 <=
-        issueAt[4:0] < 5'hC & _GEN_24 + 14'hB < io_walkBuckets
+        issueAt[4:0] < 5'hC & (before_0 | atEnd & io_walkBuckets[4:0] > 5'hB)
         & (singleAt ? issueAt[4:0] == 5'hB : issueAt[4:3] == 2'h1);
       inWalk_12 <=
-        issueAt[4:0] < 5'hD & _GEN_24 + 14'hC < io_walkBuckets
+        issueAt[4:0] < 5'hD & (before_0 | atEnd & io_walkBuckets[4:0] > 5'hC)
         & (singleAt ? issueAt[4:0] == 5'hC : issueAt[4:3] == 2'h1);
       inWalk_13 <=
-        issueAt[4:0] < 5'hE & _GEN_24 + 14'hD < io_walkBuckets
+        issueAt[4:0] < 5'hE & (before_0 | atEnd & io_walkBuckets[4:0] > 5'hD)
         & (singleAt ? issueAt[4:0] == 5'hD : issueAt[4:3] == 2'h1);
       inWalk_14 <=
-        issueAt[4:0] < 5'hF & _GEN_24 + 14'hE < io_walkBuckets
+        issueAt[4:0] < 5'hF & (before_0 | atEnd & io_walkBuckets[4:0] > 5'hE)
         & (singleAt ? issueAt[4:0] == 5'hE : issueAt[4:3] == 2'h1);
       inWalk_15 <=
-        ~(issueAt[4]) & _GEN_24 + 14'hF < io_walkBuckets
+        ~(issueAt[4]) & (before_0 | atEnd & io_walkBuckets[4])
         & (singleAt ? issueAt[4:0] == 5'hF : issueAt[4:3] == 2'h1);
       inWalk_16 <=
-        issueAt[4:0] < 5'h11 & _GEN_24 + 14'h10 < io_walkBuckets
+        issueAt[4:0] < 5'h11 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h10)
         & (singleAt ? issueAt[4:0] == 5'h10 : issueAt[4:3] == 2'h2);
       inWalk_17 <=
-        issueAt[4:0] < 5'h12 & _GEN_24 + 14'h11 < io_walkBuckets
+        issueAt[4:0] < 5'h12 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h11)
         & (singleAt ? issueAt[4:0] == 5'h11 : issueAt[4:3] == 2'h2);
       inWalk_18 <=
-        issueAt[4:0] < 5'h13 & _GEN_24 + 14'h12 < io_walkBuckets
+        issueAt[4:0] < 5'h13 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h12)
         & (singleAt ? issueAt[4:0] == 5'h12 : issueAt[4:3] == 2'h2);
       inWalk_19 <=
-        issueAt[4:0] < 5'h14 & _GEN_24 + 14'h13 < io_walkBuckets
+        issueAt[4:0] < 5'h14 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h13)
         & (singleAt ? issueAt[4:0] == 5'h13 : issueAt[4:3] == 2'h2);
       inWalk_20 <=
-        issueAt[4:0] < 5'h15 & _GEN_24 + 14'h14 < io_walkBuckets
+        issueAt[4:0] < 5'h15 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h14)
         & (singleAt ? issueAt[4:0] == 5'h14 : issueAt[4:3] == 2'h2);
       inWalk_21 <=
-        issueAt[4:0] < 5'h16 & _GEN_24 + 14'h15 < io_walkBuckets
+        issueAt[4:0] < 5'h16 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h15)
         & (singleAt ? issueAt[4:0] == 5'h15 : issueAt[4:3] == 2'h2);
       inWalk_22 <=
-        issueAt[4:0] < 5'h17 & _GEN_24 + 14'h16 < io_walkBuckets
+        issueAt[4:0] < 5'h17 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h16)
         & (singleAt ? issueAt[4:0] == 5'h16 : issueAt[4:3] == 2'h2);
       inWalk_23 <=
-        issueAt[4:3] != 2'h3 & _GEN_24 + 14'h17 < io_walkBuckets
+        issueAt[4:3] != 2'h3 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h17)
         & (singleAt ? issueAt[4:0] == 5'h17 : issueAt[4:3] == 2'h2);
       inWalk_24 <=
-        issueAt[4:0] < 5'h19 & _GEN_24 + 14'h18 < io_walkBuckets
+        issueAt[4:0] < 5'h19 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h18)
         & (singleAt ? issueAt[4:0] == 5'h18 : (&(issueAt[4:3])));
       inWalk_25 <=
-        issueAt[4:0] < 5'h1A & _GEN_24 + 14'h19 < io_walkBuckets
+        issueAt[4:0] < 5'h1A & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h19)
         & (singleAt ? issueAt[4:0] == 5'h19 : (&(issueAt[4:3])));
       inWalk_26 <=
-        issueAt[4:0] < 5'h1B & _GEN_24 + 14'h1A < io_walkBuckets
+        issueAt[4:0] < 5'h1B & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h1A)
         & (singleAt ? issueAt[4:0] == 5'h1A : (&(issueAt[4:3])));
       inWalk_27 <=
-        issueAt[4:2] != 3'h7 & _GEN_24 + 14'h1B < io_walkBuckets
+        issueAt[4:2] != 3'h7 & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h1B)
         & (singleAt ? issueAt[4:0] == 5'h1B : (&(issueAt[4:3])));
       inWalk_28 <=
-        issueAt[4:0] < 5'h1D & _GEN_24 + 14'h1C < io_walkBuckets
+        issueAt[4:0] < 5'h1D & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h1C)
         & (singleAt ? issueAt[4:0] == 5'h1C : (&(issueAt[4:3])));
       inWalk_29 <=
-        issueAt[4:1] != 4'hF & _GEN_24 + 14'h1D < io_walkBuckets
+        issueAt[4:1] != 4'hF & (before_0 | atEnd & io_walkBuckets[4:0] > 5'h1D)
         & (singleAt ? issueAt[4:0] == 5'h1D : (&(issueAt[4:3])));
       inWalk_30 <=
-        issueAt[4:0] != 5'h1F & _GEN_24 + 14'h1E < io_walkBuckets
+        issueAt[4:0] != 5'h1F & (before_0 | atEnd & (&(io_walkBuckets[4:0])))
         & (singleAt ? issueAt[4:0] == 5'h1E : (&(issueAt[4:3])));
-      inWalk_31 <=
-        _GEN_24 + 14'h1F < io_walkBuckets
-        & (singleAt ? (&(issueAt[4:0])) : (&(issueAt[4:3])));
+      inWalk_31 <= before_0 & (singleAt ? (&(issueAt[4:0])) : (&(issueAt[4:3])));
       mayBeWhole_0 <= issueAt[4:0] == 5'h0 & ~singleAt;
       mayBeWhole_1 <= issueAt[4:0] < 5'h9 & ~singleAt;
       mayBeWhole_2 <= issueAt[4:0] < 5'h11 & ~singleAt;
       mayBeWhole_3 <= issueAt[4:0] < 5'h19 & ~singleAt;
-      afterWord <= _GEN_24 + 14'h20;
+      afterWord <= {issueAt[13:5], 5'h0} + 14'h20;
     end
-    if (_GEN_27) begin
+    if (_GEN_26) begin
     end
     else begin
       bEnd_0 <= asCoarse ? decGroup_0_1 : decBucket_0_1;
@@ -20557,12 +20556,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       bEnd_2 <= asCoarse ? decGroup_2_1 : decBucket_2_1;
       bEnd_3 <= asCoarse ? decGroup_3_1 : decBucket_3_1;
     end
-    if (_GEN_40) begin
+    if (_GEN_39) begin
       curCell_0 <= base_1_0;
       curCell_1 <= base_1_1;
       curCell_2 <= base_1_2;
     end
-    else if (_GEN_11 | ~_GEN_35) begin
+    else if (_GEN_11 | ~_GEN_34) begin
     end
     else begin
       curCell_0 <= nextCell_0;
@@ -20570,18 +20569,18 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       curCell_2 <= nextCell_2;
     end
     haveCell <=
-      _GEN_40 | (_GEN_0 ? haveCell : _GEN_1 ? _GEN_26 & haveCell : _GEN_35 | haveCell);
+      _GEN_39 | (_GEN_0 ? haveCell : _GEN_1 ? _GEN_25 & haveCell : _GEN_34 | haveCell);
     if (_GEN_23)
       loaded <= loaded + 6'h1;
-    else if (_GEN_30) begin
+    else if (_GEN_29) begin
     end
     else
       loaded <= 6'h0;
     moreOfCell <=
-      _GEN_19 & _stream_io_out_bits_tag_scan & _GEN_20 & _GEN_41 & same & loaded == 6'h20
-      | _GEN_30 & moreOfCell;
-    nextSet <= _GEN_42 | _GEN_30 & nextSet;
-    if (_GEN_42) begin
+      _GEN_19 & _stream_io_out_bits_tag_scan & _GEN_20 & _GEN_40 & same & loaded == 6'h20
+      | _GEN_29 & moreOfCell;
+    nextSet <= _GEN_41 | _GEN_29 & nextSet;
+    if (_GEN_41) begin
       nextLeader <= _stream_io_out_bits_pos;
       nextGroup <= _stream_io_out_bits_group;
       nextCell_0 <= base_1_0;
@@ -20590,7 +20589,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
     end
     if (_GEN_21)
       scanLeft <= scanLeft - 13'h1;
-    else if (_GEN_30) begin
+    else if (_GEN_29) begin
     end
     else
       scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1 + bEnd_2 - p_2 + bEnd_3 - p_3;
@@ -20598,8 +20597,8 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       ~_GEN_22
       & (_GEN_0
            ? needClear
-           : _GEN_1 ? ~_GEN_6 & _GEN_5 | needClear : _GEN_9 & _GEN_34 | needClear);
-    if (_GEN_31) begin
+           : _GEN_1 ? ~_GEN_6 & _GEN_5 | needClear : _GEN_9 & _GEN_33 | needClear);
+    if (_GEN_30) begin
     end
     else begin
       lkVisit_scan <= lkHashVisit_scan;
@@ -20610,8 +20609,8 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       lkVisit_off_1 <= lkHashVisit_off_1;
       lkVisit_off_2 <= lkHashVisit_off_2;
     end
-    lkCell_scan <= _GEN_31 & lkCell_scan;
-    if (_GEN_31) begin
+    lkCell_scan <= _GEN_30 & lkCell_scan;
+    if (_GEN_30) begin
     end
     else begin
       lkCell_cell_0 <= curCell_0 + {{17{off_0[2]}}, off_0};
@@ -20631,7 +20630,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       lkHashVisit_off_1 <= lkHashVisit_r_1_off_1;
       lkHashVisit_off_2 <= lkHashVisit_r_1_off_2;
     end
-    if (_GEN_37 | ~(_GEN_13 & _GEN_36)) begin
+    if (_GEN_36 | ~(_GEN_13 & _GEN_35)) begin
     end
     else begin
       lKey_index <= casez_tmp_17;
@@ -28783,61 +28782,61 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l8_p8_e2_x_y10_t4_bx_world_fi
     always @(posedge clock) begin
       if (~reset & ~(~hashing_v_2 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~hashing_v_2_1 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~hashing_v_2_2 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~hashing_v_2_3 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~hashing_v_2_4 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~hashing_v_2_5 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~hashing_v_2_6 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~hashing_v_2_7 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:492 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:493 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~(|_deferNow_T) | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:579 assert(!deferNow || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:580 assert(!deferNow || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN_5 | dLeft == (dNext < {dCount, 3'h0}))) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the deferred buckets left lost count\n    at BroadPhase.scala:580 assert(state =/= S.generate || !sent || dLeft === (dNext < (dCount << uLog2)), \"BroadPhase: the deferred buckets left lost count\")\n");
+          $error("Assertion failed: BroadPhase: the deferred buckets left lost count\n    at BroadPhase.scala:581 assert(state =/= S.generate || !sent || dLeft === (dNext < (dCount << uLog2)), \"BroadPhase: the deferred buckets left lost count\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -29129,22 +29128,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l8_p8_e2_x_y10_t4_bx_world_fi
   wire        _GEN_32 = ~(io_start & (~(|state) | filling)) & feedOn;
   wire        _GEN_33 = ~(|state) | _GEN_7;
   wire        inPass = loading | classifying | _hashing_sorts_3_io_in_1_bits_scatter_T;
-  wire        _lanesDone_T_1 = i_0 < hi_0;
-  wire        reading_0 = inPass & _lanesDone_T_1;
-  wire        _lanesDone_T_2 = i_1 < hi_1;
-  wire        reading_1 = inPass & _lanesDone_T_2;
-  wire        _lanesDone_T_3 = i_2 < hi_2;
-  wire        reading_2 = inPass & _lanesDone_T_3;
-  wire        _lanesDone_T_4 = i_3 < hi_3;
-  wire        reading_3 = inPass & _lanesDone_T_4;
-  wire        _lanesDone_T_5 = i_4 < hi_4;
-  wire        reading_4 = inPass & _lanesDone_T_5;
-  wire        _lanesDone_T_6 = i_5 < hi_5;
-  wire        reading_5 = inPass & _lanesDone_T_6;
-  wire        _lanesDone_T_7 = i_6 < hi_6;
-  wire        reading_6 = inPass & _lanesDone_T_7;
-  wire        _lanesDone_T_8 = i_7 < hi_7;
-  wire        reading_7 = inPass & _lanesDone_T_8;
+  wire        laneLeft_0 = i_0 < hi_0;
+  wire        laneLeft_1 = i_1 < hi_1;
+  wire        laneLeft_2 = i_2 < hi_2;
+  wire        laneLeft_3 = i_3 < hi_3;
+  wire        laneLeft_4 = i_4 < hi_4;
+  wire        laneLeft_5 = i_5 < hi_5;
+  wire        laneLeft_6 = i_6 < hi_6;
+  wire        laneLeft_7 = i_7 < hi_7;
+  wire        reading_0 = inPass & laneLeft_0;
+  wire        reading_1 = inPass & laneLeft_1;
+  wire        reading_2 = inPass & laneLeft_2;
+  wire        reading_3 = inPass & laneLeft_3;
+  wire        reading_4 = inPass & laneLeft_4;
+  wire        reading_5 = inPass & laneLeft_5;
+  wire        reading_6 = inPass & laneLeft_6;
+  wire        reading_7 = inPass & laneLeft_7;
   wire        passDone =
     lanesDone
     & {issued_7,
@@ -31510,14 +31509,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l8_p8_e2_x_y10_t4_bx_world_fi
             ? ~(_GEN_12 | _GEN_9 | _GEN_11)
               & (_GEN ? boxDone : ~_GEN_13 & (_GEN_14 ? _GEN_15 : ~_GEN_16 & _GEN_20))
             : _GEN_6)
-        & {_lanesDone_T_8,
-           _lanesDone_T_7,
-           _lanesDone_T_6,
-           _lanesDone_T_5,
-           _lanesDone_T_4,
-           _lanesDone_T_3,
-           _lanesDone_T_2,
-           _lanesDone_T_1} == 8'h0;
+        & {laneLeft_7,
+           laneLeft_6,
+           laneLeft_5,
+           laneLeft_4,
+           laneLeft_3,
+           laneLeft_2,
+           laneLeft_1,
+           laneLeft_0} == 8'h0;
       feedInflight <=
         feedInflight
         + {3'h0,

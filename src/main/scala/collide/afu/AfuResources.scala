@@ -5,8 +5,9 @@ import scala.util.DynamicVariable
 /** What an AFU takes of its device, as far as the generator can count it before synthesis:
   * M20K blocks (the PUC's estimate: the sphere table's copies and the broad phase's RAMs, each
   * in its cheapest M20K mode) and DSP tiles (every FP multiplier's product tiles, counted as the
-  * design is elaborated). Logic (ALMs) needs synthesis: the area proxy measures it
-  * (bench/area), the generator does not guess it.
+  * design is elaborated; the broad phase's products by constants are not among them). Logic
+  * (ALMs) needs synthesis: the area proxy measures it (bench/area/afu_timing.py, into the AFU
+  * folder's timing.json), the generator does not guess it.
   *
   * @param m20k       M20K blocks, estimated (the pair buffer and queues not counted)
   * @param dspTiles   DSP tiles of the FP multipliers: an upper bound (a product by a constant
@@ -23,7 +24,10 @@ final case class AfuResources(m20k: Long, dspTiles: Option[Long]) {
       "share" -> math.round(1000.0 * u / has) / 1000.0)).getOrElse(ujson.Null)
     ujson.Obj("m20k" -> use(Some(m20k), d.m20k), "dsp" -> use(dspTiles, d.dspBlocks),
       "alms" -> ujson.Null,
-      "note" -> "M20K: the generator's estimate (sphere tables, broad phase); DSP: FP multiplier tiles counted at elaboration, an upper bound; ALMs: not estimated before synthesis (the area proxy, bench/area, measures logic)")
+      "note" -> ("M20K: the generator's estimate (sphere tables, broad phase); DSP: the FP multipliers' tiles counted at " +
+        "elaboration, an upper bound for them, but the broad phase's products by constants are not counted; ALMs: not " +
+        "estimated before synthesis. The area proxy (bench/area/afu_timing.py) writes the logic's ALMs and DSP blocks " +
+        "against this device into timing.json's area"))
   }
 }
 

@@ -220,7 +220,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // Each lane's bound, set with its start (setUp: the load pass's slice; restart: the port's
   // range, none past the ports), so no multiply lies between a lane's count and its read.
   private val hi = Reg(Vec(bp.lanes, UInt(countW.W)))
-  private val reading = VecInit.tabulate(bp.lanes)(l => inPass && i(l) < hi(l))
+  private val laneLeft = VecInit.tabulate(bp.lanes)(l => i(l) < hi(l)) // a read left in the lane's range
+  private val reading = VecInit.tabulate(bp.lanes)(l => inPass && laneLeft(l))
   // The reads issued last cycle: SphereKeys' inputs, counted into `inflight` from registers.
   private val issued = RegNext(reading, VecInit(Seq.fill(bp.lanes)(false.B)))
   private val inflight = RegInit(0.U(log2Ceil(bp.lanes * (keysLatency + 2) + 1).W)) // reads not yet out of SphereKeys
@@ -230,7 +231,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // pass-done logic into the state machine. It lags by one cycle where it matters at all (the
   // last read's keys are still in SphereKeys), and a cycle that sets the lanes' ranges clears it.
   private val settingLanes = WireDefault(false.B)
-  private val lanesDone = RegNext(!settingLanes && !VecInit.tabulate(bp.lanes)(l => i(l) < hi(l)).asUInt.orR, false.B)
+  private val lanesDone = RegNext(!settingLanes && !laneLeft.asUInt.orR, false.B)
   private val passDone = lanesDone && !issued.asUInt.orR && inflight === 0.U && !hashBusy
   private val level = cellExp.io.level
   private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > level

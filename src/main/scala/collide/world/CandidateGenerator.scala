@@ -324,7 +324,11 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         def claimed(l: Int): Bool =
           if (!claims) true.B
           else Mux(singleAt, f === l.U, if (unitLog2 >= wordLog2) true.B else (f >> unitLog2) === (l >> unitLog2).U)
-        for (l <- 0 until perWord) inWalk(l) := l.U >= f && b + l.U < walkEnd && claimed(l)
+        // b + l < walkEnd with b a word's first bucket: the word before walkEnd's, or walkEnd's
+        // own word below its offset; a word-index compare, not an adder and compare a bucket.
+        val (wordNo, endNo) = (issueAt >> wordLog2, walkEnd >> wordLog2)
+        val (before, atEnd) = (wordNo < endNo, wordNo === endNo)
+        for (l <- 0 until perWord) inWalk(l) := l.U >= f && (before || atEnd && l.U < wordFrom(walkEnd)) && claimed(l)
         // A walk resumed inside a group (from > its first bucket) follows a bucket of it taken
         // cell by cell: that group is not taken whole (and its first begin is not in the word read).
         for (gi <- 0 until groupsInWord) mayBeWhole(gi) := coarse.B && f <= (gi << groupLog2).U && !singleAt
@@ -435,7 +439,8 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // registered (lkCell.off) becomes a ROM whose address register is vIssue's next value,
       // which puts the whole issue decision in front of the ROM.
       def pick(t: Vec[Vec[SInt]]) = Mux1H(UIntToOH(vIssue, t.length).asBools, t)
-      val off = coarseOffsets.fold(pick(fineOffsets))(t => Mux(coarseCh, pick(t), pick(fineOffsets)))
+      val fine = pick(fineOffsets)
+      val off = coarseOffsets.fold(fine)(t => Mux(coarseCh, pick(t), fine))
       val nc = VecInit((0 until 3).map(a => curCell(a) + off(a)))
       // Every range in flight may end up queued: issue only while the queue has room for them all.
       val canIssue = haveCell && vIssue =/= visitCount && lkTotal < (lookAhead + lkStages).U
