@@ -37,6 +37,7 @@ FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES
           *[f"{f}_mhz" for f in area.TIMING_FAMILIES], "path_from", "path_to", "path_luts", "path_carry",
           "path_dsp", "black_boxes", "commit"]
 AREA = ["luts", "arith", "dsp", "ff"]  # --area: the block's cells, as area.synth counts them
+SIZES = ["lut6", "lut5", "lut4", "lut3"]  # its LUT cells by their inputs (areas cached before: empty)
 
 
 def afu(folder: Path):
@@ -53,13 +54,13 @@ def afu(folder: Path):
 def rtl_commit(folder: Path) -> str:
     """The commit whose source made the folder's Verilog: the folder's own repository's HEAD
     (this one's for a folder outside any), with "+changes" while its RTL sources or generated
-    folders differ from it."""
+    folders differ from it (but for the timing.json files this writes, which are not RTL)."""
     def git(*args, cwd):
         return subprocess.run(["git", *args], cwd=cwd, capture_output=True, text=True)
     repo = folder if git("rev-parse", "--git-dir", cwd=folder).returncode == 0 else ROOT
     top = Path(git("rev-parse", "--show-toplevel", cwd=repo).stdout.strip())
     sha = git("rev-parse", "--short", "HEAD", cwd=top).stdout.strip()
-    dirty = git("status", "--porcelain", "--", "src/main", "generated", cwd=top).stdout.strip()
+    dirty = git("status", "--porcelain", "--", "src/main", "generated", ":!generated/*/timing.json", cwd=top).stdout.strip()
     return sha + ("+changes" if dirty else "")
 
 
@@ -96,12 +97,12 @@ def main(argv=None):
             if a.area or area.is_cached(sv, mod, config_id, black):  # an area already measured is reported
                 print(f"area {mod} ...", flush=True)
                 cells = area.synth(sv, mod, area.BUILD / "logs" / "area", config_id, black)
-                rows[-1] |= {k: cells[k] for k in AREA}
+                rows[-1] |= {k: cells[k] for k in AREA} | {k: cells.get(k, "") for k in SIZES}
     if not rows:
         raise SystemExit(f"--only {a.only!r}: no block of {', '.join(a.folders)} matches")
     Path(a.out).parent.mkdir(parents=True, exist_ok=True)
     with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=FIELDS + AREA)
+        w = csv.DictWriter(f, fieldnames=FIELDS + AREA + SIZES)
         w.writeheader()
         w.writerows(rows)
     fam = area.TIMING_FAMILIES

@@ -82,9 +82,15 @@ def area_on_part(folder: Path, rows):
         return None
     total = {k: sum(int(r["count"]) * int(r[k]) for r in rows) for k in AREA}
     alms = {c: isoarea.alms(total["luts"], total["arith"], total["ff"], c) for c in isoarea.CALIBRATIONS}
+    # By the LUTs' inputs, block by block (a block's LUTs share ALMs only with its own).
+    by_size = [isoarea.alms_by_size(r) for r in rows]
+    if all(b is not None for b in by_size):
+        alms["by_size"] = sum(int(r["count"]) * b for r, b in zip(rows, by_size))
     out = {"what": "the area proxy (Yosys synth_intel_alm, Cyclone V cells) over every block, RAMs apart; ALMs "
                    "packed: max((LUT + adder cells) / 2, FFs / 4), a lower bound; unpacked: LUT + adder cells, "
-                   "one LUT an ALM, an upper bound",
+                   "one LUT an ALM, an upper bound; by_size (where the LUTs' inputs were counted): a 6-input LUT an "
+                   "ALM, a 5-input one an ALM shared with a LUT of 3 or fewer inputs, other LUTs and adder cells two an "
+                   "ALM, block by block, the estimate a fit is judged by",
            **total, "alms": alms}
     manifest = folder / "manifest.json"
     device = json.loads(manifest.read_text()).get("device") if manifest.exists() else None

@@ -7,7 +7,8 @@ matters here: two adaptive LUTs and two adder bits per ALM, and (Stratix V) four
 So the ALMs a block needs lie between two counts, both reported:
   packed    max((LUT cells + adder cells) / 2, FFs / 4): every ALM used to the full
   unpacked  LUT cells + adder cells: one LUT per ALM
-A real fit lies between them. DSPs: every multiplier Yosys maps (MISTRAL_MUL*) counts as one
+A real fit lies between them (alms_by_size: a third count, by the LUTs' inputs, where the
+proxy counted them). DSPs: every multiplier Yosys maps (MISTRAL_MUL*) counts as one
 block, although a Stratix V block holds two 18x18 or three 9x9 products, so narrow formats are
 counted pessimistically. RAM: the sphere table copies and the pair buffer (the manifest's
 bits) against 50 Mbit.
@@ -34,6 +35,23 @@ def alms(luts, arith, ff, calibration):
     if calibration == "packed":
         return max(math.ceil((luts + arith) / 2), math.ceil(ff / 4))
     return luts + arith
+
+
+SIZES = ("lut6", "lut5", "lut4", "lut3")  # LUT cells by their inputs (lut3: three or fewer)
+
+
+def alms_by_size(cells):
+    """ALMs by the shapes an ALM takes in normal and arithmetic mode (Intel, Stratix V Device
+    Handbook vol. 1, "Logic Array Blocks and Adaptive Logic Modules"): a 6-input LUT takes an ALM;
+    a 5-input LUT takes one, with a LUT of three or fewer inputs beside it where there is one;
+    the other LUTs of four or fewer inputs go two an ALM; adder cells two an ALM; at most four
+    flip-flops an ALM. Between `packed` and `unpacked`: the estimate a fit is judged by. None
+    unless `cells` has the LUT sizes (areas cached before they were counted)."""
+    if not all(cells.get(k) not in (None, "") for k in SIZES + ("arith", "ff")):
+        return None
+    l6, l5, l4, l3, arith, ff = (int(cells[k]) for k in SIZES + ("arith", "ff"))
+    luts = l6 + l5 + math.ceil((l4 + max(0, l3 - l5)) / 2)
+    return max(luts + math.ceil(arith / 2), math.ceil(ff / 4))
 
 
 def scpu_areas(arith_rows):

@@ -258,7 +258,14 @@ class ReachedClock(unittest.TestCase):
             # 250 LUTs, 100 adder cells, 520 FFs, 7 DSPs: packed max(175, 130), unpacked 350.
             self.assertEqual((a["luts"], a["arith"], a["ff"], a["dsp"]), (250, 100, 520, 7))
             self.assertEqual(a["alms"], {"packed": 175, "unpacked": 350})
-            self.assertEqual(a["device"]["alms_share"], {"packed": 0.175, "unpacked": 0.35})
+            # With the LUTs by their inputs, the count by ALM shapes, block by block: A takes
+            # 20 + 30 (its 5-input LUTs beside 20 of its small ones) + 15 (30 4-input LUTs two an
+            # ALM) + 20 adder ALMs = 85, under its 100 flip-flop ALMs; each S 10 + 20 + 10 = 40.
+            rows[0] |= {"lut6": "20", "lut5": "30", "lut4": "30", "lut3": "20"}
+            rows[1] |= {"lut6": "10", "lut5": "0", "lut4": "20", "lut3": "20"}
+            a = reached_clock.describe(folder, rows, "abc1234", pnr)["area"]
+            self.assertEqual(a["alms"], {"packed": 175, "unpacked": 350, "by_size": 100 + 3 * 40})
+            self.assertEqual(a["device"]["alms_share"], {"packed": 0.175, "unpacked": 0.35, "by_size": 0.22})
             self.assertEqual(a["device"]["dsp_share"], 0.7)
             rows[1]["ff"] = ""  # one block without its area: no area at all, rather than a partial sum
             self.assertNotIn("area", reached_clock.describe(folder, rows, "abc1234", pnr))

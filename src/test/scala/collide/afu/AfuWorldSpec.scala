@@ -285,6 +285,10 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     endToEnd(AfuConfig.world, "preset")
   }
 
+  it should "match the golden model in the world-fit preset (8 lanes, 4 fp32 SCPUs: the world preset on the paper's part), alone and queued" taggedAs Slow in {
+    endToEnd(AfuConfig.worldFit, "world-fit")
+  }
+
   it should "match the golden model in the world32 preset (32 lanes, 16 sort ports, queued runs started ahead, counters cleared behind), alone and queued" taggedAs Slow in {
     endToEnd(AfuConfig.world32, "world32")
   }
