@@ -144,7 +144,7 @@ def main(argv=None):
         (out / "refused.txt").unlink(missing_ok=True)
     machine_md = world.write_results(out, "world-afu.csv", text_rows, "bench/world/afu_world.py", argv,
                                      f"{a.collide}: the CLI with {lanes_of(a.afu)['afu']}'s AFU Verilated in "
-                                     "(collide_world: tools/test's Release build makes it from generated/world)"
+                                     "(tools/test's Release build makes build/host/test/collide_world from generated/world)"
                                      + (f"; {a.built}" if a.built else ""), start)
     if kept:  # the kept rows' command and machine stay beside this run's
         old = kept_sections(earlier_machine, sorted({r["cloud"] for r in kept}), clouds)
@@ -197,7 +197,15 @@ def lanes_of(afu):
     m = json.loads((Path(afu) / "manifest.json").read_text())
     bp = m["afu"].get("broadPhase") or {}
     return {"lanes": int(bp.get("lanes", 1)), "ports": int(bp.get("sortPorts", 1)),
-            "scpus": f"{m['afu']['scpus']} {m['scpu']['name']}", "afu": f"generated/{Path(afu).name}"}
+            "scpus": f"{m['afu']['scpus']} {m['scpu']['name']}", "afu": shown(Path(afu))}
+
+
+def shown(path):
+    """A folder as the docs name it: relative to the repository where it is inside it."""
+    try:
+        return str(path.resolve().relative_to(ROOT))
+    except ValueError:
+        return str(path)
 
 
 def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32", afu="generated/world"):

@@ -18511,7 +18511,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  reg  [5:0]  li;
+  reg  [6:0]  liNext;
   reg  [5:0]  lj;
   reg  [5:0]  lIdx;
   reg         lLoad;
@@ -20270,7 +20270,6 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
   wire        _GEN_35 = lj != 6'h20 & lIdx < {1'h0, io_largeCount};
   wire        _GEN_36 = _GEN_0 | _GEN_1 | _GEN_9;
   wire        _GEN_37 = _GEN_35 | lLoad;
-  wire [6:0]  nextLi = {1'h0, li} + 7'h20;
   wire        _GEN_38 = _GEN_14 & _GEN_18;
   wire        _GEN_39 =
     _GEN_19 & _stream_io_out_bits_tag_scan & _GEN_20 & take & ~haveCell;
@@ -20342,7 +20341,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
               state <= 3'h4;
           end
           else if (_GEN_38)
-            state <= {1'h0, {2{nextLi < {2'h0, io_largeCount}}}};
+            state <= {1'h0, {2{liNext < {2'h0, io_largeCount}}}};
           walkPend <= (~(_GEN_9 & _GEN_31) | _GEN_32) & walkPend;
         end
         deferPend <= _GEN_1 & _GEN_6 | ~io_deferOk & deferPend;
@@ -20395,7 +20394,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
         if (_GEN_7 | ~_GEN_8) begin
         end
         else begin
-          li <= 6'h0;
+          liNext <= 7'h20;
           lj <= 6'h0;
           lIdx <= 6'h0;
         end
@@ -20435,13 +20434,13 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r11_w5_l8_g4_x1_u_h8_bx_d_a6_s
           sent <= _GEN_14 & _GEN_27 | sent;
           if (_GEN_38) begin
             lj <= 6'h0;
-            lIdx <= nextLi[5:0];
+            lIdx <= liNext[5:0];
           end
         end
         if (_GEN_16 | ~_GEN_38) begin
         end
         else
-          li <= nextLi[5:0];
+          liNext <= liNext + 7'h20;
       end
     end
     if (_GEN_24) begin

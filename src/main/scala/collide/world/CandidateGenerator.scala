@@ -278,9 +278,11 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   lkTotal := lkTotal + lkIssue.asUInt - lkq.io.deq.fire.asUInt - lkDrop.asUInt
   assert(lkTotal === lkq.io.count +& lkInFlight, "CandidateGenerator: lookups counted apart from the queue and stages")
   // --- large pass ------------------------------------------------------------------------
-  private val li = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W))
+  // The large pass's next chunk of large spheres starts here, a register of its own: the end of a
+  // chunk compares it with the count, no add before the compare.
+  private val liNext = Reg(UInt(log2Ceil(largeSlots + 2 * chunk + 1).W))
   private val lj = Reg(UInt(log2Ceil(chunk + 1).W))
-  private val lIdx = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W)) // li + lj, kept so no add lies before the large list's read
+  private val lIdx = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W)) // the chunk's first plus lj, kept so no add lies before the large list's read
   private val lLoad = RegInit(false.B) // lKey was read last cycle: the matcher loads it now
   private val lKey = Reg(new WorldKey(itemW, cellBits, qWidth))
   lLoad := false.B
@@ -293,7 +295,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     lkCellV := false.B; lkHashing.foreach(_ := false.B); lkHashV := false.B
   }
   private def startLargePass(): Unit = {
-    li := 0.U; lj := 0.U; lIdx := 0.U; matcher.io.clear := true.B
+    liNext := chunk.U; lj := 0.U; lIdx := 0.U; matcher.io.clear := true.B
     state := Mux(io.largeCount === 0.U || io.largeFrom >= io.largeTo, S.idle, S.largeLoad)
   }
 
@@ -511,9 +513,8 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       stream.io.out.ready := matcher.io.in.ready || it.rec.excluded
       when(stream.io.out.fire && !it.rec.excluded) { probes := probes + 1.U }
       when(sent && stream.io.idle && matcher.io.idle) {
-        val nextLi = li +& chunk.U
-        li := nextLi; lj := 0.U; lIdx := nextLi; matcher.io.clear := true.B
-        state := Mux(nextLi < io.largeCount, S.largeLoad, S.idle)
+        liNext := liNext + chunk.U; lj := 0.U; lIdx := liNext; matcher.io.clear := true.B
+        state := Mux(liNext < io.largeCount, S.largeLoad, S.idle)
       }
     }
   }
