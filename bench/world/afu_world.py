@@ -223,7 +223,10 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
              "The AFU's contacts equal simd's byte for byte in every row (the script stops otherwise).",
              *([f"The AFU runs at {', '.join(sorted({format(r['clock_mhz'], 'g') for r in rows if r.get('clock_given')}))} MHz "
                 "here (`--clock-mhz`), not at its links' own clocks; the links' rates and latencies stay in ns."]
-               if any(r.get("clock_given") for r in rows) else []),
+               if any(r.get("clock_given") for r in rows) else
+               [f"The AFU runs at {', '.join(sorted({format(r['clock_mhz'], 'g') for r in rows if 'clock_mhz' in r}))} MHz "
+                "here: the lower of the link's target and the clock the AFU folder's timing.json says its cells reach."]
+               if any("clock_mhz" in r for r in rows) else []),
              "Every number: [world-afu.csv](world-afu.csv)." +
              (" \"Before\": the same row's AFU time in the CSV given to --compare (see MACHINE.md's command)." if compare else ""), ""]
     cmp = compare or {}

@@ -4,7 +4,7 @@ import java.io.File
 import java.nio.file.Files
 import org.scalatest.flatspec.AnyFlatSpec
 
-/** generated/default/, generated/world/, generated/cosim/ and the contract headers are committed; they must be what the
+/** generated/default/, generated/world/, generated/cosim/, generated/world_fit/ and the contract headers are committed; they must be what the
   * generator makes today. */
 class GeneratedFreshSpec extends AnyFlatSpec {
   behavior of "generated/"
@@ -20,10 +20,10 @@ class GeneratedFreshSpec extends AnyFlatSpec {
     }
   }
 
-  // The AFUs the host builds: the default one, the world preset (world mode's CLI test) and the
-  // default for fast co-simulation (its SCPUs the C++ model).
-  for (cfg <- Seq(AfuConfig.default, AfuConfig.world, AfuConfig.cosim)) {
-    val dir = s"generated/${cfg.name}"
+  // The AFUs the host builds: the default one, the world preset (world mode's CLI test), the
+  // default for fast co-simulation (its SCPUs the C++ model) and world-fit (its results).
+  for (cfg <- Seq(AfuConfig.default, AfuConfig.world, AfuConfig.cosim, AfuConfig.worldFit)) {
+    val dir = s"generated/${cfg.id}"
     it should s"hold $dir identical to a fresh run of the generator" in {
       val committed = new File(dir)
       val refresh = s"""sbt "run --preset ${cfg.name}""""
