@@ -98,6 +98,20 @@ class AfuWorldReport(unittest.TestCase):
             afu_world.report([self.row("uniform", 670, "qpi")], out, "", lanes=16, ports=8)  # an older CSV: no column
             self.assertNotIn("--clock-mhz", (out / "README.md").read_text())
 
+    def test_a_world_without_ode_gets_a_dash_and_the_summary_says_where_ode_was_run(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = Path(d)
+            big = self.row("uniform", 1000000, "qpi") | {"ode_sap_ns": None, "ode_over_afu": None}
+            afu_world.report([self.row("uniform", 670, "qpi"), big], out, "", lanes=16, ports=8)
+            text = (out / "README.md").read_text()
+            self.assertIn("| 1,000,000 | 3,000,000 | qpi | 2 | 2 | 0.0 | 0.0 | 2.0x | 2 | - | - | 0.0 | 2.00x |", text)
+            self.assertIn("faster than ODE's sweep-and-prune space + dCollide (where it was run: `--skip-ode-above`)", text)
+            self.assertIn("ODE's sweep-and-prune is left out of the rows marked -", text)
+            afu_world.report([big], out, "", lanes=16, ports=8)  # no ODE at all: no ODE clause
+            self.assertNotIn("faster than ODE's", (out / "README.md").read_text())
+            # A CSV's empty cell reads back as a peer left out.
+            self.assertIsNone(afu_world.parse({"cloud": "uniform", "link": "qpi", "ode_sap_ns": ""})["ode_sap_ns"])
+
     def test_a_run_of_the_ideal_link_alone_gets_its_report_and_says_harp_was_not_run(self):
         with tempfile.TemporaryDirectory() as d:
             out = Path(d)

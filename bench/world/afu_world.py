@@ -62,6 +62,9 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--clouds", default=",".join(CLOUDS))
     ap.add_argument("--clock-mhz", type=float, default=None, help="the AFU's clock instead of each link preset's")
+    ap.add_argument("--skip-ode-above", type=int, default=0, metavar="N",
+                    help="leave ODE's sweep-and-prune out of worlds of more than N spheres (minutes a run at 1,000,000; "
+                         "bench/results/peers has its time there); 0: never")
     ap.add_argument("--built", default="", help="where --collide was built, for MACHINE.md (e.g. a clean clone at a commit)")
     ap.add_argument("--out", default=str(ROOT / "bench/results/world-afu"))
     ap.add_argument("--report-only", action="store_true", help="rewrite README.md from OUT/world-afu.csv")
@@ -99,6 +102,8 @@ def main(argv=None):
                 # The tuned grid last: simd's contacts file is the one the AFU's is compared with.
                 for name, backend, space, extra in (("ode", "ode", "sap", ()), ("tuned1", "grid", None, ("--threads", "1")),
                                                     ("tuned", "grid", None, ()), ("simd", "simd", None, ())):
+                    if name == "ode" and 0 < a.skip_ode_above < n:
+                        continue
                     cpu[name] = world.run(a.collide, path, backend, space, a.repeat, work, extra)
                 for link in a.links.split(","):
                     summary = work / "afu.json"
@@ -114,11 +119,11 @@ def main(argv=None):
                     if (work / "afu.csv").read_text() != (work / "contacts.csv").read_text():
                         sys.exit(f"afu_world: {kind} {n}: the AFU's contacts differ from simd's")
                     f = s["afu"]
-                    ode = cpu["ode"]["broad_ns"] + cpu["ode"]["narrow_ns"]
+                    ode = cpu["ode"]["broad_ns"] + cpu["ode"]["narrow_ns"] if "ode" in cpu else None
                     grid = cpu["simd"]["broad_ns"] + cpu["simd"]["narrow_ns"]
                     # The tuned grid's whole time (its finish is part of its work), one thread and all.
                     tuned1, tuned = (cpu[k]["broad_ns"] + cpu[k]["narrow_ns"] + cpu[k].get("finish_ns", 0) for k in ("tuned1", "tuned"))
-                    best = min(ode, grid, tuned1, tuned)
+                    best = min(t for t in (ode, grid, tuned1, tuned) if t is not None)
                     row = {"cloud": kind, "spheres": n, "link": link, "clock_mhz": f["clock_mhz"],
                            "clock_given": 0 if a.clock_mhz is None else 1, "candidates": s["candidates"],
                            "contacts": s["contacts"], "afu_ns": f["modelled_ns"], "link_bound_ns": f["link_bound_ns"],
@@ -128,13 +133,13 @@ def main(argv=None):
                            "cycles_total": f["cycles_total"], "cycles_broad": f["cycles_broad"],
                            "cycles_load": f["cycles_load"], "cell_edge": f["cell_edge"], "large": f["large"],
                            "ode_sap_ns": ode, "simd_grid_ns": grid,
-                           "ode_over_afu": ode / f["modelled_ns"], "grid_over_afu": grid / f["modelled_ns"],
+                           "ode_over_afu": ode / f["modelled_ns"] if ode is not None else None, "grid_over_afu": grid / f["modelled_ns"],
                            "tuned_grid_1t_ns": tuned1, "tuned_grid_ns": tuned, "threads": cpu["tuned"].get("threads", 0),
                            "best_cpu_ns": best, "best_cpu_over_afu": best / f["modelled_ns"]}
                     rows.append(row)
                     print(f"{kind:9} {n:5} {link:6} {s['contacts']:6} contacts  afu {f['modelled_ns'] / 1e3:8.1f} us"
                           f" (bound {f['link_bound_ns'] / 1e3:6.1f}, broad {f['cycles_broad']} cycles)  ode sap "
-                          f"{ode / 1e3:8.1f} us  grid {grid / 1e3:7.1f} us  tuned {tuned1 / 1e3:7.1f} / {tuned / 1e3:7.1f} us", flush=True)
+                          f"{ode / 1e3 if ode is not None else float('nan'):8.1f} us  grid {grid / 1e3:7.1f} us  tuned {tuned1 / 1e3:7.1f} / {tuned / 1e3:7.1f} us", flush=True)
     order = lambda r: CLOUDS.index(r["cloud"])
     rows, text_rows = sorted(kept + rows, key=order), sorted(kept_text + rows, key=order)
     refused = [l for l in refused_lines(out) if l.split(",")[0] not in clouds] + refused
@@ -143,7 +148,7 @@ def main(argv=None):
     else:
         (out / "refused.txt").unlink(missing_ok=True)
     machine_md = world.write_results(out, "world-afu.csv", text_rows, "bench/world/afu_world.py", argv,
-                                     f"{a.collide}: the CLI with {lanes_of(a.afu)['afu']}'s AFU Verilated in "
+                                     f"{shown(Path(a.collide))}: the CLI with {lanes_of(a.afu)['afu']}'s AFU Verilated in "
                                      "(tools/test's Release build makes build/host/test/collide_world from generated/world)"
                                      + (f"; {a.built}" if a.built else ""), start)
     if kept:  # the kept rows' command and machine stay beside this run's
@@ -184,7 +189,16 @@ def refused_lines(out):
 
 
 def parse(row):
-    return {k: (v if k in ("cloud", "link") else float(v)) for k, v in row.items()}
+    """A CSV row's numbers as floats; a peer left out (empty) as None."""
+    return {k: (v if k in ("cloud", "link") else float(v) if v != "" else None) for k, v in row.items()}
+
+
+def us(v):
+    return "-" if v is None else f"{v / 1e3:,.1f}"
+
+
+def times(v, digits=2):
+    return "-" if v is None else f"{v:.{digits}f}x"
 
 
 def read_rows(path):
@@ -227,6 +241,8 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
                [f"The AFU runs at {', '.join(sorted({format(r['clock_mhz'], 'g') for r in rows if 'clock_mhz' in r}))} MHz "
                 "here: the lower of the link's target and the clock the AFU folder's timing.json says its cells reach."]
                if any("clock_mhz" in r for r in rows) else []),
+             *(["ODE's sweep-and-prune is left out of the rows marked - (`--skip-ode-above`: minutes a run); "
+                "bench/results/peers measures it at 1,000,000 spheres."] if any(r.get("ode_sap_ns", 0) is None for r in rows) else []),
              "Every number: [world-afu.csv](world-afu.csv)." +
              (" \"Before\": the same row's AFU time in the CSV given to --compare (see MACHINE.md's command)." if compare else ""), ""]
     cmp = compare or {}
@@ -246,7 +262,7 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
             lines.append(f"| {int(r['spheres']):,} | {int(r['contacts']):,} | {r['link']} | {int(r['slabs'])} | "
                          f"{int(r.get('calls', r['slabs']))} | {r['afu_ns'] / 1e3:,.1f} | {before}"
                          f"{r['link_bound_ns'] / 1e3:,.1f} | {r['afu_over_bound']:.1f}x | {int(r['cycles_broad']):,} | "
-                         f"{r['ode_sap_ns'] / 1e3:,.1f} | {r['ode_over_afu']:.2f}x | {r['simd_grid_ns'] / 1e3:,.1f} | "
+                         f"{us(r['ode_sap_ns'])} | {times(r['ode_over_afu'])} | {r['simd_grid_ns'] / 1e3:,.1f} | "
                          f"{r['grid_over_afu']:.2f}x |" +
                          (f" {r['tuned_grid_1t_ns'] / 1e3:,.1f} | {r['tuned_grid_ns'] / 1e3:,.1f} | {r['best_cpu_over_afu']:.2f}x |"
                           if tuned_cols else ""))
@@ -255,7 +271,8 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
             lines += ["Refused by `collide spheres` (no cut of the world into runs of the AFU's table holds it; nothing", "was computed, nothing is missing from the rows above):", ""]
             lines += [f"- {l}" for l in refusals]
         lines.append("")
-    rng = lambda k, sel=lambda r: True: (min(r[k] for r in rows if sel(r)), max(r[k] for r in rows if sel(r)))
+    rng = lambda k, sel=lambda r: True: (min(r[k] for r in rows if sel(r) and r[k] is not None),
+                                         max(r[k] for r in rows if sel(r) and r[k] is not None))
     qpi = lambda r: r["link"] == "qpi"
     per = [r["cycles_broad"] / r["spheres"] for r in rows]
     one = [r["cycles_broad"] / r["spheres"] for r in rows if int(r["slabs"]) == 1] or per
@@ -264,7 +281,7 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
                      f"{max(r['contacts'] / r['spheres'] for r in dia):.1f} contacts a sphere) is nearer its QPI bound, "
                      f"{min(r['afu_over_bound'] for r in dia):.1f}-{max(r['afu_over_bound'] for r in dia):.1f}x, since its "
                      "contact writes are a larger part of the bound. ODE's sweep-and-prune beats our CPU grid on it up to "
-                     f"{max([int(r['spheres']) for r in dia if r['ode_sap_ns'] < r['simd_grid_ns']] or [0]):,} spheres "
+                     f"{max([int(r['spheres']) for r in dia if r['ode_sap_ns'] is not None and r['ode_sap_ns'] < r['simd_grid_ns']] or [0]):,} spheres "
                      "(the grid's power-of-two cells hold many of its close-packed spheres) and loses above."] if dia else [])
     within = [f"{r['cloud']} {int(r['spheres']):,}" for r in rows if qpi(r) and r["afu_over_bound"] <= 2.0]
     link_clause = (f"- It is {rng('afu_over_bound', qpi)[0]:.1f}-{rng('afu_over_bound', qpi)[1]:.1f}x its link bound on HARP v1's "
@@ -272,8 +289,11 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
                    ": the broad phase takes " if any(qpi(r) for r in rows)
                    else "- HARP v1's QPI link was not run here (`--links`). The broad phase takes ")
     lines += ["## What it shows", "",
-              f"- The AFU's world mode is {rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's "
-              f"sweep-and-prune space + dCollide and {rng('grid_over_afu')[0]:.1f}-{rng('grid_over_afu')[1]:.1f}x faster "
+              "- The AFU's world mode is " +
+              (f"{rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's sweep-and-prune space + "
+               "dCollide" + (" (where it was run: `--skip-ode-above`)" if any(r["ode_sap_ns"] is None for r in rows) else "")
+               + " and " if any(r["ode_sap_ns"] is not None for r in rows) else "") +
+              f"{rng('grid_over_afu')[0]:.1f}-{rng('grid_over_afu')[1]:.1f}x faster "
               "than our CPU grid + simd kernel on every cloud and size here (modelled AFU time against measured CPU time)" +
               (f"; the fastest CPU peer measured beside it (the tuned grid, `--backend grid`, on one thread or all "
                f"{int(max(r['threads'] for r in rows))}, or another) takes {rng('best_cpu_over_afu')[0]:.2f}-"
