@@ -167,7 +167,9 @@ object AfuConfig {
     * scan loads them), its sort's passes eight spheres
     * a cycle (four sorts of two ports), 32 counters a word, box buckets, up to 4096 spheres
     * a run, and a run queue: a world cut into several runs loads each run's table while the
-    * run before it computes (bench/results/world-lanes, bench/results/world-afu). */
+    * run before it computes (bench/results/world-lanes, bench/results/world-afu). Built for the
+    * Arria 10 GX 1150, whose M20K and DSP blocks hold it but whose ALMs do not by the area proxy
+    * (125 % by LUT shape, docs/timing.md): a study; `world-fit` fits a part. */
   val world: AfuConfig   = big.copy(name = "world",
     world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
       cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6, scanPairs = true)),
