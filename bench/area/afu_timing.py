@@ -31,13 +31,14 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 import area  # noqa: E402
+import isoarea  # noqa: E402
 import reached_clock  # noqa: E402
 
 FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES],
           *[f"{f}_mhz" for f in area.TIMING_FAMILIES], "path_from", "path_to", "path_luts", "path_carry",
           "path_dsp", "black_boxes", "commit"]
-AREA = ["luts", "arith", "dsp", "ff"]  # --area: the block's cells, as area.synth counts them
-SIZES = ["lut6", "lut5", "lut4", "lut3"]  # its LUT cells by their inputs (areas cached before: empty)
+AREA = area.CELLS  # --area: the block's cells, as area.synth counts them
+SIZES = list(isoarea.SIZES)  # its LUT cells by their inputs (areas cached before they were counted: empty)
 
 
 def afu(folder: Path):

@@ -71,16 +71,13 @@ def describe(folder: Path, rows, commit: str, pnr_csv: Path = PNR_CSV) -> dict:
     return out
 
 
-AREA = ("luts", "arith", "ff", "dsp")
-
-
 def area_on_part(folder: Path, rows):
     """The area proxy's cells summed over the folder's blocks (each times its count; RAMs are
     black boxes, counted by the generator's M20K estimate instead) and the ALMs they take
     against the part its manifest names: None unless every block has its area."""
-    if not all(r.get(k) not in (None, "") for r in rows for k in AREA):
+    if not all(r.get(k) not in (None, "") for r in rows for k in area.CELLS):
         return None
-    total = {k: sum(int(r["count"]) * int(r[k]) for r in rows) for k in AREA}
+    total = {k: sum(int(r["count"]) * int(r[k]) for r in rows) for k in area.CELLS}
     alms = {c: isoarea.alms(total["luts"], total["arith"], total["ff"], c) for c in isoarea.CALIBRATIONS}
     # By the LUTs' inputs, block by block (a block's LUTs share ALMs only with its own).
     by_size = [isoarea.alms_by_size(r) for r in rows]

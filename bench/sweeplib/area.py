@@ -92,6 +92,9 @@ def _cache(text: str, top: str, config_id: str, black=()):
     return pre, mods, CACHE / f"{generic_top}-{key}.json"
 
 
+CELLS = ["luts", "arith", "dsp", "ff"]  # the cells synth reports (besides the LUTs by inputs, isoarea.SIZES)
+
+
 def is_cached(sv: Path, top: str, config_id: str, black=()) -> bool:
     return _cache(sv.read_text(), top, config_id, black)[2].exists()
 

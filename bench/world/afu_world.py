@@ -147,15 +147,16 @@ def main(argv=None):
         (out / "refused.txt").write_text("".join(l + "\n" for l in refused))
     else:
         (out / "refused.txt").unlink(missing_ok=True)
+    shape = lanes_of(a.afu)
     machine_md = world.write_results(out, "world-afu.csv", text_rows, "bench/world/afu_world.py", argv,
-                                     f"{shown(Path(a.collide))}: the CLI with {lanes_of(a.afu)['afu']}'s AFU Verilated in "
+                                     f"{shown(Path(a.collide))}: the CLI with {shape['afu']}'s AFU Verilated in "
                                      "(tools/test's Release build makes build/host/test/collide_world from generated/world)"
                                      + (f"; {a.built}" if a.built else ""), start)
     if kept:  # the kept rows' command and machine stay beside this run's
         old = kept_sections(earlier_machine, sorted({r["cloud"] for r in kept}), clouds)
         machine_md = old + "\n\n" + machine_md.replace("## How and where", "## How and where: " + ", ".join(clouds), 1)
         (out / "MACHINE.md").write_text(machine_md)
-    report(rows, out, machine_md, **lanes_of(a.afu), compare=compared(a.compare))
+    report(rows, out, machine_md, **shape, compare=compared(a.compare))
     return 0
 
 
@@ -222,6 +223,20 @@ def shown(path):
         return str(path)
 
 
+def clock_note(rows):
+    """The sentence that says the clock the AFU's rows ran at (none for rows from before the column)."""
+    given = [r for r in rows if r.get("clock_given")]
+    timed = given or [r for r in rows if "clock_mhz" in r]
+    if not timed:
+        return []
+    mhz = ", ".join(sorted({format(r["clock_mhz"], "g") for r in timed}))
+    if given:
+        return [f"The AFU runs at {mhz} MHz here (`--clock-mhz`), not at its links' own clocks; the links' rates and "
+                "latencies stay in ns."]
+    return [f"The AFU runs at {mhz} MHz here: the lower of the link's target and the clock the AFU folder's "
+            "timing.json says its cells reach."]
+
+
 def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32", afu="generated/world"):
     plural = "s" if lanes > 1 else ""
     spheres_a_cycle = f"{ports} sphere{'s' if ports > 1 else ''} a cycle"
@@ -235,12 +250,7 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
              "grid + the binary32 kernel) and, where the columns are there, `--backend grid` (the tuned grid, one thread and all),",
              "both wall clock, fastest of N, on the same spheres in the same run (bench/world/afu_world.py).",
              "The AFU's contacts equal simd's byte for byte in every row (the script stops otherwise).",
-             *([f"The AFU runs at {', '.join(sorted({format(r['clock_mhz'], 'g') for r in rows if r.get('clock_given')}))} MHz "
-                "here (`--clock-mhz`), not at its links' own clocks; the links' rates and latencies stay in ns."]
-               if any(r.get("clock_given") for r in rows) else
-               [f"The AFU runs at {', '.join(sorted({format(r['clock_mhz'], 'g') for r in rows if 'clock_mhz' in r}))} MHz "
-                "here: the lower of the link's target and the clock the AFU folder's timing.json says its cells reach."]
-               if any("clock_mhz" in r for r in rows) else []),
+             *clock_note(rows),
              *(["ODE's sweep-and-prune is left out of the rows marked - (`--skip-ode-above`: minutes a run); "
                 "bench/results/peers measures it at 1,000,000 spheres."] if any(r.get("ode_sap_ns", 0) is None for r in rows) else []),
              "Every number: [world-afu.csv](world-afu.csv)." +
@@ -288,11 +298,12 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None, scpus="16 fp32",
                    "QPI link" + (", within 2x only for " + ", ".join(within) if within else ", never within 2x") +
                    ": the broad phase takes " if any(qpi(r) for r in rows)
                    else "- HARP v1's QPI link was not run here (`--links`). The broad phase takes ")
+    with_ode = [r for r in rows if r["ode_sap_ns"] is not None]
+    ode_clause = (f"{rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's sweep-and-prune space + "
+                  "dCollide" + (" (where it was run: `--skip-ode-above`)" if len(with_ode) < len(rows) else "") + " and "
+                  if with_ode else "")
     lines += ["## What it shows", "",
-              "- The AFU's world mode is " +
-              (f"{rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's sweep-and-prune space + "
-               "dCollide" + (" (where it was run: `--skip-ode-above`)" if any(r["ode_sap_ns"] is None for r in rows) else "")
-               + " and " if any(r["ode_sap_ns"] is not None for r in rows) else "") +
+              "- The AFU's world mode is " + ode_clause +
               f"{rng('grid_over_afu')[0]:.1f}-{rng('grid_over_afu')[1]:.1f}x faster "
               "than our CPU grid + simd kernel on every cloud and size here (modelled AFU time against measured CPU time)" +
               (f"; the fastest CPU peer measured beside it (the tuned grid, `--backend grid`, on one thread or all "
