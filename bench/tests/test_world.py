@@ -88,6 +88,14 @@ class AfuWorldReport(unittest.TestCase):
                 self.assertIn("--clock-mhz", err.getvalue())
             self.assertEqual(list(Path(d).iterdir()), [])
 
+    def test_a_negative_ode_bound_is_refused_before_any_work(self):
+        with tempfile.TemporaryDirectory() as d:
+            with self.assertRaises(SystemExit) as e, contextlib.redirect_stderr(io.StringIO()) as err:
+                afu_world.main(["--skip-ode-above", "-1", "--collide", "/nonexistent/collide", "--out", d])
+            self.assertEqual(e.exception.code, 2)
+            self.assertIn("--skip-ode-above: -1 is not a sphere count", err.getvalue())
+            self.assertEqual(list(Path(d).iterdir()), [])
+
     def test_rows_at_another_clock_say_so_and_rows_at_the_links_own_do_not(self):
         with tempfile.TemporaryDirectory() as d:
             out = Path(d)

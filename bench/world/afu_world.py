@@ -74,6 +74,8 @@ def main(argv=None):
     # Given means given: 0 is a clock out of range, not "each preset's" (collide checks the range).
     if a.clock_mhz is not None and not a.clock_mhz > 0:
         ap.error(f"--clock-mhz: {a.clock_mhz:g} MHz is not a clock (collide takes 1..2000)")
+    if a.skip_ode_above < 0:
+        ap.error(f"--skip-ode-above: {a.skip_ode_above} is not a sphere count (0: never leave ODE out)")
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     clouds = a.clouds.split(",")
