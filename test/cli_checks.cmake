@@ -473,17 +473,38 @@ elseif(CHECK STREQUAL "input_mistakes")
   expect_match("${err}" "afu/manifest.json: link.format: expected a string, got 32")
 elseif(CHECK STREQUAL "ode_bad_input")
   # Values that made ODE abort (SIGABRT) are no contact with their flag (docs/host.md, "Bad
-  # pairs"): 8 non-finite, 32 out of range; the good pair after them is computed.
-  foreach(bad "-1;32" "nan;8" "0;32")
+  # pairs"): 8 non-finite, 32 a negative radius; a zero radius is computed (a coincident
+  # contact, 37 = hit, coincident, 32 outside a scene's range). The good pair after them is
+  # computed, and stderr ends with the count of flagged pairs.
+  foreach(bad "-1;0;32;outside the host's range" "nan;0;8;non-finite input" "0;1;37;outside the host's range")
     list(GET bad 0 r)
-    list(GET bad 1 want)
+    list(GET bad 1 hit)
+    list(GET bad 2 want)
+    list(GET bad 3 said)
     file(WRITE ${WORK}/in.csv "x1,y1,z1,r1,x2,y2,z2,r2\n0,0,0,${r},0,0,0,2\n0,0,0,1,1,0,0,1\n")
     execute_process(COMMAND ${COLLIDE} pairs --backend ode --in ${WORK}/in.csv --out ${WORK}/out.csv
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     expect_rc(0)
     file(READ ${WORK}/out.csv got)
-    expect_match("${got}" "\n0,0,[^\n]*,${want}\n1,1,")
+    expect_match("${got}" "\n0,${hit},[^\n]*,${want}\n1,1,")
+    expect_match("${err}" "collide pairs: flagged 1 pair: 1 ${said}[^\n]*\n$")
   endforeach()
+  # No finite pair is refused: 1e30 m is computed on every backend, and a value binary16
+  # cannot hold flags its pair (8 + 32: it became infinite), not the whole file.
+  file(WRITE ${WORK}/in.csv "x1,y1,z1,r1,x2,y2,z2,r2\n1e30,0,0,1e30,-1e30,0,0,1e30\n1e5,0,0,1,0,0,0,1\n0,0,0,1,1,0,0,1\n")
+  foreach(backend ode simd64)
+    execute_process(COMMAND ${COLLIDE} pairs --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+    file(READ ${WORK}/out.csv got)
+    expect_match("${got}" "\n0,1,0x1p\\+47,[^\n]*,35\n1,0,[^\n]*,0\n2,1,")
+  endforeach()
+  execute_process(COMMAND ${COLLIDE} pairs --backend model:fp16 --in ${WORK}/in.csv --out ${WORK}/out.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  file(READ ${WORK}/out.csv got)
+  expect_match("${got}" "\n0,0,[^\n]*,40\n1,0,[^\n]*,40\n2,1,")
+  expect_match("${err}" "flagged 2 pairs: 2 non-finite input \\(8\\), 2 outside the host's range or the link format \\(32\\)\n$")
   file(WRITE ${WORK}/far.json "{\"steps\": 2, \"dt\": 0.01, \"bodies\": {\"spheres\": [{\"pos\": [1e9, 0, 0], \"r\": 0.1}]}}")
   execute_process(COMMAND ${COLLIDE} run ${WORK}/far.json RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   expect_rc(1)

@@ -53,6 +53,16 @@ TEST(JsonLimits, ADeepSceneNamesTheFileAndTheKeyPath) {
   EXPECT_NE(errorOf([&] { scene::loadScene(ok); }).find("scene.name: expected a string"), std::string::npos);
 }
 
+// Found by the fuzzer (test/fuzz): a number beyond binary64 escaped as nlohmann's out_of_range,
+// whose message names neither the file nor the problem's place.
+TEST(JsonLimits, ANumberBeyondBinary64NamesTheFile) {
+  const auto file = writeTemp("huge_number.json", "{" + kOk + R"("bodies": {"diamond": {"hMax": 1e400}}})");
+  const std::string e = errorOf([&] { scene::loadScene(file); });
+  EXPECT_EQ(e.rfind(file.string() + ": a number out of binary64's range", 0), 0u) << e;
+  const std::string m = errorOf([&] { driver::parseManifest(R"({"scpus": -321e308})", "m.json"); });
+  EXPECT_EQ(m.rfind("m.json: a number out of binary64's range", 0), 0u) << m;
+}
+
 TEST(JsonLimits, ADeepManifestNamesTheFile) {
   const auto file = writeTemp("manifest.json", R"({"link": {"format": )" + nested(R"({"x": )", "1", "}") + "}}");
   const std::string e = errorOf([&] { driver::loadManifest(file.parent_path()); });
@@ -89,7 +99,8 @@ TEST(JsonLimits, AHugeCsvFieldIsEchoedClipped) {
   std::istringstream in("x1,y1,z1,r1,x2,y2,z2,r2\n" + std::string(60'000, 'z') + ",0,0,1,0,0,0,1\n");
   SphereTable s;
   PairList p;
-  const std::string e = errorOf([&] { cli::readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p); });
+  std::vector<std::uint8_t> unfit;
+  const std::string e = errorOf([&] { cli::readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p, unfit); });
   EXPECT_EQ(e.rfind("in.csv:2: x1: not a number: 'zzz", 0), 0u) << e.substr(0, 200);
   EXPECT_NE(e.find("... (60000 bytes)'"), std::string::npos) << e.substr(0, 200);
   EXPECT_LT(e.size(), 200u);

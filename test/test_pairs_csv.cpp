@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <sstream>
+#include <vector>
 
 #include "cli/pairs_csv.hpp"
 
@@ -14,8 +16,9 @@ std::string parseError(const std::string& text, LinkFormat f = LinkFormat::Binar
   std::istringstream in(text);
   SphereTable s;
   PairList p;
+  std::vector<std::uint8_t> unfit;
   try {
-    readPairsCsv(in, "in.csv", f, s, p);
+    readPairsCsv(in, "in.csv", f, s, p, unfit);
   } catch (const CsvError& e) {
     return e.what();
   }
@@ -28,7 +31,8 @@ TEST(PairsCsv, ParsesDecimalAndHexFloats) {
   std::istringstream in(kHeader + "0.1,0x1.8p+1, -2 ,1e-3,0,0,0,1\n\n  \n0x1p-149,-0,inf,nan,1,2,3,4\r\n");
   SphereTable s;
   PairList p;
-  readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p);
+  std::vector<std::uint8_t> unfit;
+  readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p, unfit);
   ASSERT_EQ(p.size(), 2u);
   EXPECT_EQ(p.i[1], 2u);
   EXPECT_EQ(p.j[1], 3u);
@@ -45,7 +49,7 @@ TEST(PairsCsv, ParsesDecimalAndHexFloats) {
   std::istringstream in64(kHeader + "0.1,0,0,1,0,0,0,1\n");
   SphereTable s64;
   PairList p64;
-  readPairsCsv(in64, "in.csv", LinkFormat::Binary64, s64, p64);
+  readPairsCsv(in64, "in.csv", LinkFormat::Binary64, s64, p64, unfit);
   EXPECT_EQ(s64.x[0], 0.1);
 }
 
@@ -57,8 +61,37 @@ TEST(PairsCsv, ErrorsNameTheLine) {
   EXPECT_EQ(parseError(kHeader + "1,2,3,4,abc,6,7,8\n"), "in.csv:2: x2: not a number: 'abc'");
   EXPECT_EQ(parseError(kHeader + "1,2,3,4,5,6,7,\n"), "in.csv:2: r2: empty field");
   EXPECT_EQ(parseError(kHeader + "1,2,3,4,5,6,7,8\n1,2,3,1.5.2,5,6,7,8\n"), "in.csv:3: r1: not a number: '1.5.2'");
-  EXPECT_EQ(parseError(kHeader + "1e39,2,3,4,5,6,7,8\n"), "in.csv:2: x1: '1e39' overflows binary32");
-  EXPECT_EQ(parseError(kHeader + "1e39,2,3,4,5,6,7,8\n", LinkFormat::Binary64), "(no error)");
+}
+
+// A value the format cannot hold is kept as rounded and its sphere marked, never a
+// whole-file error: the pair is flagged (collidePairs), every other pair is computed.
+TEST(PairsCsv, AValueThatDoesNotFitMarksItsSphereNotTheFile) {
+  std::istringstream in(kHeader + "1e39,2,3,4,5,6,7,8\n0,0,0,1e-50,0,0,0,1\n0,1e-50,0,1,0,0,0,inf\n"
+                                  "1,2,3,4,5,6,7,8\n");
+  SphereTable s;
+  PairList p;
+  std::vector<std::uint8_t> unfit;
+  readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p, unfit);
+  ASSERT_EQ(p.size(), 4u);
+  ASSERT_EQ(unfit.size(), s.size());
+  EXPECT_TRUE(std::isinf(s.x[0]));
+  EXPECT_EQ(unfit[0], 1) << "a finite literal that became infinite";
+  EXPECT_EQ(unfit[1], 0);
+  EXPECT_EQ(s.r[2], 0.0);
+  EXPECT_EQ(unfit[2], 1) << "a non-zero radius that became zero";
+  EXPECT_EQ(unfit[4], 0) << "a coordinate that became zero is still the nearest value";
+  EXPECT_EQ(unfit[5], 0) << "a literal infinity fits: it is a non-finite input, not an overflow";
+  EXPECT_EQ(unfit[6] + unfit[7], 0);
+  // binary16 tops out at 65504; binary64 holds 1e39.
+  std::istringstream in16(kHeader + "1e5,0,0,1,0,0,0,1\n"), in64(kHeader + "1e39,0,0,1,0,0,0,1\n");
+  SphereTable s16, s64;
+  PairList p16, p64;
+  std::vector<std::uint8_t> u16, u64;
+  readPairsCsv(in16, "in.csv", LinkFormat::Binary16, s16, p16, u16);
+  readPairsCsv(in64, "in.csv", LinkFormat::Binary64, s64, p64, u64);
+  EXPECT_EQ(u16[0], 1);
+  EXPECT_EQ(u64[0], 0);
+  EXPECT_EQ(s64.x[0], 1e39);
 }
 
 TEST(PairsCsv, WritesHexFloatsInTheLinkFormat) {
@@ -84,7 +117,8 @@ TEST(PairsCsv, AByteOrderMarkBeforeTheHeaderIsAccepted) {
   std::istringstream in("\xEF\xBB\xBF" + kHeader + "0,0,0,1,0,0,0,2\n");
   SphereTable s;
   PairList p;
-  readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p);
+  std::vector<std::uint8_t> unfit;
+  readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p, unfit);
   EXPECT_EQ(p.size(), 1u);
   // Elsewhere an invisible byte is named as such, not shown as an identical header.
   EXPECT_EQ(parseError("x1,y1,z1,r1,x2,y2,z2,r2\xC2\xA0\n"),

@@ -20,12 +20,15 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 #   python3-venv     - the pinned Python environment of the demo's picture and the sweeps' plots
 #   ccache           - bench/sweep builds one host per AFU configuration: the host's own
 #                      sources compile once, not once per configuration
+#   clang, libclang-rt-14-dev - libFuzzer and the sanitizer runtimes for the host's fuzz
+#                      targets (test/fuzz, docs/fuzzing.md); GCC has no libFuzzer
 #   slurm-wlm, munge - bench/sweep's Slurm executor (sbatch, squeue, scancel) and the
 #                      one-node cluster its tests start (slurmctld, slurmd, munged); not
 #                      where Slurm's commands are already on PATH (a cluster's own Slurm,
 #                      often from a module, which Debian's would shadow or clash with)
 packages=(verilator libode-dev libbullet-dev libfcl-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev
-          cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache)
+          cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache
+          clang libclang-rt-14-dev)
 if ! command -v sbatch >/dev/null 2>&1 || dpkg-query -W -f='${Status}' slurm-wlm 2>/dev/null | grep -q "install ok installed"; then
   packages+=(slurm-wlm munge)
 fi

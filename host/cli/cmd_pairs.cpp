@@ -2,7 +2,10 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
+#include "afu_contract.hpp"
 #include "cli/clock_option.hpp"
 #include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
@@ -16,6 +19,33 @@
 #include "util/input_file.hpp"
 
 namespace collide::cli {
+
+namespace {
+// "3 pairs: 2 non-finite input (8), 1 outside the host's range (32)": each problem flag with
+// the number of pairs carrying it (a pair may carry several). Empty when none is set.
+std::string flaggedSummary(const ContactSet& c) {
+  const struct {
+    std::uint32_t bit;
+    const char* what;
+  } kinds[] = {{contract::REC_NONFINITE, "non-finite input"},
+               {contract::REC_ARITH, "arithmetic overflow or invalid"},
+               {contract::REC_HOST_RANGE, "outside the host's range or the link format"}};
+  const std::uint32_t problems = contract::REC_NONFINITE | contract::REC_ARITH | contract::REC_HOST_RANGE;
+  std::size_t any = 0;
+  for (auto f : c.flags) any += (f & problems) != 0;
+  if (any == 0) return "";
+  std::string s = std::to_string(any) + (any == 1 ? " pair:" : " pairs:");
+  const char* sep = " ";
+  for (const auto& k : kinds) {
+    std::size_t n = 0;
+    for (auto f : c.flags) n += (f & k.bit) != 0;
+    if (n == 0) continue;
+    s += sep + std::to_string(n) + " " + k.what + " (" + std::to_string(k.bit) + ")";
+    sep = ", ";
+  }
+  return s;
+}
+}  // namespace
 
 int runPairs(const PairsOptions& o) {
   return reportErrors("collide pairs", [&]() -> int {
@@ -42,15 +72,16 @@ int runPairs(const PairsOptions& o) {
     OutputFile out(o.out, OutputFile::Dash::IsStdout);
     SphereTable spheres;
     PairList pairs;
+    std::vector<std::uint8_t> didNotFit;  // per sphere: a value the backend's format cannot hold
     if (o.in == "-") {
-      readPairsCsv(std::cin, "<stdin>", backend->format(), spheres, pairs);
+      readPairsCsv(std::cin, "<stdin>", backend->format(), spheres, pairs, didNotFit);
     } else {
       std::ifstream in = util::openInput(o.in);  // a directory says so
-      readPairsCsv(in, o.in, backend->format(), spheres, pairs);
+      readPairsCsv(in, o.in, backend->format(), spheres, pairs, didNotFit);
     }
 
     ContactSet contacts;
-    collidePairs(*backend, spheres, pairs, contacts);  // flags, and one decision on bad pairs
+    collidePairs(*backend, spheres, pairs, contacts, didNotFit);  // flags, one decision on bad pairs
 
     writeContactsCsv(out.stream(), contacts);
     out.commit();
@@ -63,6 +94,9 @@ int runPairs(const PairsOptions& o) {
                 << req.link.clockMHz << " MHz)\n  " << clock->describe();
     }
     std::cerr << "\n";
+    // Last, so that a flagged pair never passes without a word.
+    if (const std::string flagged = flaggedSummary(contacts); !flagged.empty())
+      std::cerr << "collide pairs: flagged " << flagged << "\n";
     return 0;
   });
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 
 #include "util/echo.hpp"
 
@@ -29,16 +31,24 @@ std::vector<std::string> split(const std::string& s) {
   }
 }
 
-// One field as a value of `format`; false with `why` set if it is not a whole number.
-bool parseField(const std::string& f, LinkFormat format, double& v, std::string& why) {
+// One field as a value of `format`; false with `why` set if it is not a whole number, or if
+// a finite literal overflows and that is an error. `unfit`: the value did not fit (a finite
+// literal became infinite, or a non-zero one became zero).
+bool parseField(const std::string& f, LinkFormat format, Overflow overflow, double& v, bool& unfit, std::string& why) {
+  unfit = false;
   if (f.empty()) { why = "empty field"; return false; }
   if (!format::parseInto(f.c_str(), numberFormat(format), v)) { why = "not a number: '" + util::clip(f) + "'"; return false; }
-  // Underflow (a subnormal or zero) is a valid input; overflow of a finite literal is not.
   const bool literalInf = f.find_first_of("iI") != std::string::npos;
   if (std::isinf(v) && !literalInf) {
-    why = "'" + util::clip(f) + "' overflows " + toString(format);
-    return false;
+    if (overflow == Overflow::Error) {
+      why = "'" + util::clip(f) + "' overflows " + toString(format);
+      return false;
+    }
+    unfit = true;
   }
+  // A non-zero literal that rounded to zero (long double reaches far below every format's
+  // smallest subnormal, so strtold tells a zero literal from an underflowed one).
+  if (v == 0 && std::strtold(f.c_str(), nullptr) != 0) unfit = true;
   return true;
 }
 
@@ -64,7 +74,8 @@ bool readLine(std::istream& in, std::string& line, const std::function<void(cons
 }  // namespace
 
 void readNumberCsv(std::istream& in, const std::string& name, LinkFormat format,
-                   const std::vector<std::string>& columns, const std::function<void(const double*)>& row) {
+                   const std::vector<std::string>& columns,
+                   const std::function<void(const double* values, const bool* unfit)>& row, Overflow overflow) {
   auto fail = [&](std::size_t line, const std::string& what) {
     throw CsvError(name + ":" + std::to_string(line) + ": " + what);
   };
@@ -75,6 +86,7 @@ void readNumberCsv(std::istream& in, const std::string& name, LinkFormat format,
   std::size_t line = 0;
   bool header = false;
   std::vector<double> v(columns.size());
+  std::unique_ptr<bool[]> unfit(new bool[columns.size()]);
   while (readLine(in, raw, [&](const std::string& start) {
     fail(line + 1, "line longer than " + std::to_string(kMaxLineBytes) + " bytes (a row is " + cols + " numbers): '" +
                        start + "'");
@@ -98,9 +110,9 @@ void readNumberCsv(std::istream& in, const std::string& name, LinkFormat format,
     if (fields.size() != columns.size()) fail(line, "expected " + cols + " fields, got " + std::to_string(fields.size()));
     for (std::size_t k = 0; k < columns.size(); ++k) {
       std::string why;
-      if (!parseField(fields[k], format, v[k], why)) fail(line, columns[k] + ": " + why);
+      if (!parseField(fields[k], format, overflow, v[k], unfit[k], why)) fail(line, columns[k] + ": " + why);
     }
-    row(v.data());
+    row(v.data(), unfit.get());
   }
   if (!header) fail(line == 0 ? 1 : line, "empty input: expected the header '" + want + "'");
 }

@@ -3,7 +3,7 @@
 namespace collide::cli {
 
 void readSpheresCsv(std::istream& in, const std::string& name, LinkFormat format, SphereTable& spheres) {
-  readNumberCsv(in, name, format, {"x", "y", "z", "r"}, [&](const double* v) { spheres.push(v[0], v[1], v[2], v[3]); });
+  readNumberCsv(in, name, format, {"x", "y", "z", "r"}, [&](const double* v, const bool*) { spheres.push(v[0], v[1], v[2], v[3]); });
 }
 
 void writeWorldContactsCsv(std::ostream& out, const world::WorldContacts& w) {

@@ -1,6 +1,8 @@
 #include "collide/input_policy.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "afu_contract.hpp"
 #include "batch/sane_ranges.hpp"
@@ -37,9 +39,39 @@ void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& o
   }
 }
 
-void collidePairs(CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out) {
+VectorInput classifyVectorPair(const SphereTable& s, std::uint32_t i, std::uint32_t j) {
+  const PairInput p = classifyPair(s, i, j);
+  if (p == PairInput::NonFinite) return VectorInput::NonFinite;
+  if (p == PairInput::Ok) return VectorInput::Ok;
+  // -0.0 < 0 is false: a zero radius, which ODE takes.
+  if (s.r[i] < 0 || s.r[j] < 0) return VectorInput::NegativeRadius;
+  return VectorInput::OutsideScene;
+}
+
+void collidePairs(CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out,
+                  const std::vector<std::uint8_t>& didNotFit) {
+  if (!didNotFit.empty() && didNotFit.size() != s.size())
+    throw std::logic_error("collidePairs: didNotFit has " + std::to_string(didNotFit.size()) + " entries for " +
+                           std::to_string(s.size()) + " spheres");
   backend.collide(s, pairs, out);
-  finishPairs(backend, s, pairs, out);
+  if (!backend.setsRecordFlags()) setCpuRecordFlags(s, pairs, out.format, out);
+  out.flags.resize(pairs.size(), 0);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto i = pairs.i[k], j = pairs.j[k];
+    const VectorInput v = classifyVectorPair(s, i, j);
+    const bool unfit = !didNotFit.empty() && (didNotFit[i] || didNotFit[j]);
+    // The backend's own REC_HOST_RANGE (a value outside its link format) survives.
+    std::uint8_t add = unfit || v == VectorInput::OutsideScene || v == VectorInput::NegativeRadius
+                           ? static_cast<std::uint8_t>(contract::REC_HOST_RANGE)
+                           : 0;
+    if (!vectorComputes(v)) {
+      out.hit[k] = 0;
+      out.px[k] = out.py[k] = out.pz[k] = out.nx[k] = out.ny[k] = out.nz[k] = out.depth[k] = 0;
+      const std::uint8_t keep = out.flags[k] & contract::REC_HOST_RANGE;
+      out.flags[k] = static_cast<std::uint8_t>(keep | (v == VectorInput::NonFinite ? contract::REC_NONFINITE : 0));
+    }
+    out.flags[k] = static_cast<std::uint8_t>(out.flags[k] | add);
+  }
 }
 
 void finishPairs(const CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out) {

@@ -21,9 +21,11 @@ void OdeBackend::collide(const SphereTable& s, const PairList& pairs, ContactSet
   out.format = LinkFormat::Binary64;
   for (std::size_t k = 0; k < n; ++k) {
     const auto a = pairs.i[k], b = pairs.j[k];
-    // A pair ODE cannot take (input_policy.hpp) never reaches it: no contact here, flagged
-    // by applyInputPolicy. A world's spheres were checked by the scene and at every step.
-    if (!world && classifyPair(s, a, b) != PairInput::Ok) continue;
+    // A pair ODE cannot take (a non-finite value or a negative radius, input_policy.hpp)
+    // never reaches it: no contact here, flagged by the policy. Vector mode computes every
+    // other pair (no hash space here). A world's spheres were checked by the scene and at
+    // every step.
+    if (!world && !vectorComputes(classifyVectorPair(s, a, b))) continue;
     dGeomID g1 = scratch1_, g2 = scratch2_;
     if (world) {
       g1 = (*geoms_)[a];

@@ -66,6 +66,9 @@ nlohmann::json parse(Input&& in, const std::string& what, const std::string& roo
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann quotes the last token it read, which may be a whole line: clipped.
     throw JsonInputError(what + ": not valid JSON: " + clip(e.what(), 4 * kEchoChars));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond binary64 (1e400): nlohmann refuses it with out_of_range, not parse_error.
+    throw JsonInputError(what + ": a number out of binary64's range: " + clip(e.what(), 4 * kEchoChars));
   }
 }
 
