@@ -168,22 +168,22 @@ object AfuConfig {
     * a cycle (four sorts of two ports), 32 counters a word, box buckets, up to 4096 spheres
     * a run, and a run queue: a world cut into several runs loads each run's table while the
     * run before it computes (bench/results/world-lanes, bench/results/world-afu). Built for the
-    * Arria 10 GX 1150, whose M20K and DSP blocks hold it but whose ALMs do not by the area proxy
-    * (125 % by LUT shape, docs/timing.md): a study; `world-fit` fits a part. */
+    * Stratix 10 GX 2800: the area proxy puts it at 125 % of an Arria 10 GX 1150's ALMs by LUT
+    * shape (docs/timing.md); `world-fit` fits the paper's part. */
   val world: AfuConfig   = big.copy(name = "world",
     world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
       cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6, scanPairs = true)),
-    runQueue = true, device = Device.arria10GX1150)
+    runQueue = true, device = Device.stratix10GX2800)
 
   /** World mode at twice the lanes: the `world` preset with 32 candidate lanes and its sort's
     * passes 16 spheres a cycle, 256 candidate lines queued for the dispatcher, the sort's counters
     * cleared behind its scatter and a queued run's broad phase started ahead. The configuration
     * of the ideal-link study (docs/afu.md, "Starting ahead"); about twice the `world` preset's
     * broad-phase logic and three times its sort RAM, so a study of what the target costs, not a
-    * design fitted to one FPGA. */
+    * design fitted to one FPGA: on the Arria 10 GX 1150 it is refused without --allow-overfit. */
   val world32: AfuConfig = world.copy(name = "world32",
     world = world.world.map(_.copy(lanes = 32, sortPorts = 16, clearBehind = true)),
-    worldLineQueue = 256, startAhead = true)
+    worldLineQueue = 256, startAhead = true, device = Device.arria10GX1150)
 
   /** World mode on the paper's part: the `world` preset cut to fit the Stratix V GX A7
     * (5SGXEA7) of HARP v1, whose 234,720 ALMs hold neither the `world` preset's 16-lane broad

@@ -23,7 +23,14 @@ object Device {
   val arria10GX1150: Device = Device("10AX115", "Intel Arria 10 GX 1150 (HARP v2, Intel PAC)", alms = 427200, m20k = 2713,
     dspBlocks = 1518, source = "Intel, Intel Arria 10 Device Overview (A10-OVERVIEW), Arria 10 GX resources: GX 1150")
 
-  val all: Seq[Device] = Seq(stratixVA7, arria10GX1150)
+  /** The part of Intel's Stratix 10 accelerator card (the PAC D5005 carries the SX 2800, whose
+    * fabric is the GX 2800's): the smallest part on an Intel accelerator platform that holds
+    * the `world` preset by the area proxy. */
+  val stratix10GX2800: Device = Device("1SG280", "Intel Stratix 10 GX 2800 (the Intel PAC D5005's SX 2800 fabric)",
+    alms = 933120, m20k = 11721, dspBlocks = 5760,
+    source = "Intel, Intel Stratix 10 GX/SX Device Overview (S10-OVERVIEW), Stratix 10 GX resources: GX 2800")
+
+  val all: Seq[Device] = Seq(stratixVA7, arria10GX1150, stratix10GX2800)
   def byName(s: String): Either[String, Device] =
     all.find(_.name.equalsIgnoreCase(s.trim)).toRight(s"unknown device '$s' (known: ${all.map(_.name).mkString(", ")})")
 }

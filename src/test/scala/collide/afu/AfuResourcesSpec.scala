@@ -33,11 +33,12 @@ class AfuResourcesSpec extends AnyFlatSpec {
     assert(AfuResources(100, None).overfit(d).isEmpty, "a DSP count not made is not a refusal")
   }
 
-  it should "give every preset a device: the paper's part, and Arria 10 GX 1150 for world mode" in {
+  it should "give every preset a device: the paper's part, a Stratix 10 GX 2800 for world mode, an Arria 10 for its study" in {
     assert(AfuConfig.default.device == Device.stratixVA7 && AfuConfig.cosim.device == Device.stratixVA7)
-    assert(AfuConfig.world.device == Device.arria10GX1150 && AfuConfig.world32.device == Device.arria10GX1150)
+    assert(AfuConfig.world.device == Device.stratix10GX2800 && AfuConfig.world32.device == Device.arria10GX1150)
+    assert(Device.stratix10GX2800.alms == 933120 && Device.stratix10GX2800.source.contains("S10-OVERVIEW"))
     assert(cfg("--device", "10ax115").toOption.get.device == Device.arria10GX1150)
-    assert(cfg("--device", "xc7a35t").left.toOption.get.contains("--device: unknown device 'xc7a35t' (known: 5SGXEA7, 10AX115)"))
+    assert(cfg("--device", "xc7a35t").left.toOption.get.contains("--device: unknown device 'xc7a35t' (known: 5SGXEA7, 10AX115, 1SG280)"))
     // The default AFU's sphere table: 16 copies of 64 lines of 512 bits, 26 M20Ks each (1K x 20).
     assert(AfuResources.of(AfuConfig.default, Some(160)) == AfuResources(16 * 26, Some(160)))
     assert(AfuResources.of(AfuConfig.cosim, Some(0)).dspTiles.isEmpty, "the C++ model's SCPUs take no tiles to count")
