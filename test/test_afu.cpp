@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <random>
 
+#include "collide/model_backend.hpp"
 #include "collide/ode_backend.hpp"
 #include "collide/rtl_backend.hpp"
 #include "collide/simd_backend.hpp"
@@ -20,6 +21,7 @@
 #include "driver/manifest.hpp"
 #include "collide/input_policy.hpp"
 #include "support/bad_pairs.hpp"
+#include "support/domain_pairs.hpp"
 #include "support/golden_vectors.hpp"
 #include "support/lockstep.hpp"
 #include "support/random_batch.hpp"
@@ -182,6 +184,43 @@ TEST(Afu, BadPairsGetTheDecisionAndFlagsOfTheCpuBackends) {
     EXPECT_EQ(cr.flags[k] & ~contract::REC_ARITH, cs.flags[k] & ~contract::REC_ARITH)
         << "pair " << k << ": " << b.what[k];
   }
+}
+
+// Vector mode over binary32's whole finite range on the AFU (docs/host.md, "Bad pairs"): pairs
+// at 1e7, 1e30, 3e37 and subnormal scales are computed, never refused, and the AFU's records
+// are the fp32 golden model's (model:fp32) bit for bit, values, kind and flags (REC_ARITH
+// included), for an AFU whose SCPU that model reproduces.
+TEST(Afu, VectorModeComputesEveryFiniteBinary32PairAsTheGoldenModel) {
+  const auto m = builtIn();
+  const auto& sc = m.raw.at("scpu");
+  if (!(m.format == LinkFormat::Binary32 && sc.value("/format/name"_json_pointer, "") == "fp32" &&
+        sc.value("distance", "") == "sqrt-recip" && sc.value("rounding", "") == "RNE" && sc.value("subnormals", false) &&
+        sc.value("sqrtAlg", "") == "dr" && sc.value("recipAlg", "") == "dr"))
+    GTEST_SKIP() << "model:fp32 reproduces an fp32 sqrt-recip SCPU with digit-recurrence roots; this AFU's is "
+                 << sc.value("describe", "?");
+  const std::uint64_t seed = test::testSeed(20261207);
+  const auto d = test::domainPairs(seed, 100);
+  RtlBackend rtl(std::filesystem::path{}, link::LinkParams::ideal(), options());
+  ModelBackend model("fp32");
+  ContactSet cr, cm;
+  collidePairs(rtl, d.spheres, d.pairs, cr);
+  collidePairs(model, d.spheres, d.pairs, cm);
+  ASSERT_EQ(cr.size(), d.pairs.size());
+  std::size_t hits = 0, arith = 0;
+  for (std::size_t k = 0; k < d.pairs.size(); ++k) {
+    const std::string what = "seed " + std::to_string(seed) + ", pair " + std::to_string(k) + " at scale " +
+                             std::to_string(d.scale[k]);
+    EXPECT_EQ(cr.hit[k], cm.hit[k]) << what;
+    EXPECT_EQ(cr.flags[k], cm.flags[k]) << what;
+    const std::vector<double>* a[] = {&cr.px, &cr.py, &cr.pz, &cr.nx, &cr.ny, &cr.nz, &cr.depth};
+    const std::vector<double>* b[] = {&cm.px, &cm.py, &cm.pz, &cm.nx, &cm.ny, &cm.nz, &cm.depth};
+    for (int f = 0; f < 7; ++f)
+      EXPECT_EQ(std::memcmp(&(*a[f])[k], &(*b[f])[k], sizeof(double)), 0) << what << ", field " << f;
+    hits += cr.hit[k];
+    arith += (cr.flags[k] & contract::REC_ARITH) != 0;
+  }
+  EXPECT_GT(hits, 0u);
+  EXPECT_GT(arith, 0u) << "some squares overflow binary32 at 3e37 m";
 }
 
 // Fault testing that moves: random batches through the real AFU over a hostile link (both

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <random>
 #include <vector>
 
 #include "afu_contract.hpp"
@@ -16,6 +15,7 @@
 #include "collide/ode_backend.hpp"
 #include "collide/simd_backend.hpp"
 #include "support/bad_pairs.hpp"
+#include "support/domain_pairs.hpp"
 #include "support/test_seed.hpp"
 
 using namespace collide;
@@ -87,23 +87,10 @@ TEST(InputPolicy, SimdAndOdeGiveTheSameDecisionAndFlagsOnBadPairs) {
 // REC_HOST_RANGE on every backend.
 TEST(InputPolicy, VectorModeComputesEveryFinitePairAsTheGoldenModelDoes) {
   const std::uint64_t seed = test::testSeed(20261207);
-  std::mt19937_64 rng(seed);
-  SphereTable s;
-  PairList p;
-  std::vector<double> scales;
-  for (double scale : {1e7, 1e30, 1e-40, 1e-30, 1.0, 3e37}) {
-    for (int n = 0; n < 400; ++n) {
-      std::uniform_real_distribution<double> pos(-scale, scale), rad(0.0, scale);
-      const double cx = pos(rng), cy = pos(rng), cz = pos(rng);
-      // Half the pairs near each other (contacts likely), half anywhere in the box.
-      const double near = n % 2 ? 0.01 : 1.0;
-      auto f = [](double v) { return static_cast<double>(static_cast<float>(v)); };  // binary32 inputs
-      s.push(f(cx), f(cy), f(cz), f(rad(rng)));
-      s.push(f(cx + near * pos(rng)), f(cy + near * pos(rng)), f(cz + near * pos(rng)), f(rad(rng)));
-      p.push(static_cast<std::uint32_t>(s.size() - 2), static_cast<std::uint32_t>(s.size() - 1));
-      scales.push_back(scale);
-    }
-  }
+  const auto d = test::domainPairs(seed);
+  const SphereTable& s = d.spheres;
+  const PairList& p = d.pairs;
+  const std::vector<double>& scales = d.scale;
   SimdBackend simd, simd64(LinkFormat::Binary64);
   ModelBackend model("fp32");
   OdeBackend ode;
