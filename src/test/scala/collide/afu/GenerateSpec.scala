@@ -115,9 +115,9 @@ class GenerateSpec extends AnyFlatSpec {
     assert(sa.puc.world.get.startAhead && sa.puc.world.get.lineQueue == 64)
     val ms = AfuManifest.json(sa, "")("afu")("broadPhase")
     assert(ms("startAhead").bool && ms("lineQueue").num == 64 && ms("lanes").num == 32)
-    // The world32 preset is the world preset with exactly these flags.
+    // The world32 preset is the world preset with exactly these flags, on the Arria 10 it studies.
     val w32 = cfg("--preset", "world", "--world-lanes", "32", "--world-sort-ports", "16", "--world-line-queue", "256",
-      "--start-ahead", "true", "--world-clear-behind", "true").toOption.get
+      "--start-ahead", "true", "--world-clear-behind", "true", "--device", "10AX115").toOption.get
     assert(w32.copy(name = "world32") == AfuConfig.world32 && cfg("--preset", "world32").toOption.get.id == "world32")
     assert(AfuConfig.world32.puc.ramCopies == 16 + 16, "sixteen SCPU copies and the 32 lanes' sixteen")
     // Counters cleared behind the scatter: one table of counters more a sort, a name of its own.
