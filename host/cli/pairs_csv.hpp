@@ -2,9 +2,9 @@
 // Vector-mode CSV: input `x1,y1,z1,r1,x2,y2,z2,r2` (decimal or C99 hex floats),
 // output `pair,hit,px,py,pz,nx,ny,nz,depth,flags` with %a hex floats in the link format and
 // the record flags byte (docs/afu-interface.md) in decimal.
+#include <cstdint>
 #include <istream>
 #include <ostream>
-#include <cstdint>
 #include <string>
 #include <vector>
 

@@ -10,6 +10,22 @@
 
 namespace collide {
 
+namespace {
+// Pair k becomes no contact with fields zero and flags `flag`; the host's own range flag
+// (a value outside the link format) survives, the backend's other flags do not.
+void rejectPair(ContactSet& out, std::size_t k, std::uint32_t flag) {
+  out.hit[k] = 0;
+  out.px[k] = out.py[k] = out.pz[k] = out.nx[k] = out.ny[k] = out.nz[k] = out.depth[k] = 0;
+  out.flags[k] = static_cast<std::uint8_t>((out.flags[k] & contract::REC_HOST_RANGE) | flag);
+}
+
+// The record flags: the AFU's own, or the CPU backends' computed as the AFU computes them.
+void setRecordFlags(const CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out) {
+  if (!backend.setsRecordFlags()) setCpuRecordFlags(s, pairs, out.format, out);
+  out.flags.resize(pairs.size(), 0);
+}
+}  // namespace
+
 PairInput classifySphere(const SphereTable& s, std::uint32_t i) {
   const double v[4] = {s.x[i], s.y[i], s.z[i], s.r[i]};
   for (double x : v)
@@ -30,12 +46,7 @@ void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& o
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const PairInput p = classifyPair(s, pairs.i[k], pairs.j[k]);
     if (p == PairInput::Ok) continue;
-    out.hit[k] = 0;
-    out.px[k] = out.py[k] = out.pz[k] = out.nx[k] = out.ny[k] = out.nz[k] = out.depth[k] = 0;
-    // The host's own range flag (the link format) survives; the backend's others do not.
-    const std::uint8_t keep = out.flags[k] & contract::REC_HOST_RANGE;
-    out.flags[k] = static_cast<std::uint8_t>(
-        keep | (p == PairInput::NonFinite ? contract::REC_NONFINITE : contract::REC_HOST_RANGE));
+    rejectPair(out, k, p == PairInput::NonFinite ? contract::REC_NONFINITE : contract::REC_HOST_RANGE);
   }
 }
 
@@ -54,28 +65,19 @@ void collidePairs(CollisionBackend& backend, const SphereTable& s, const PairLis
     throw std::logic_error("collidePairs: didNotFit has " + std::to_string(didNotFit.size()) + " entries for " +
                            std::to_string(s.size()) + " spheres");
   backend.collide(s, pairs, out);
-  if (!backend.setsRecordFlags()) setCpuRecordFlags(s, pairs, out.format, out);
-  out.flags.resize(pairs.size(), 0);
+  setRecordFlags(backend, s, pairs, out);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const auto i = pairs.i[k], j = pairs.j[k];
     const VectorInput v = classifyVectorPair(s, i, j);
+    if (v == VectorInput::NonFinite) rejectPair(out, k, contract::REC_NONFINITE);
+    if (v == VectorInput::NegativeRadius) rejectPair(out, k, contract::REC_HOST_RANGE);
     const bool unfit = !didNotFit.empty() && (didNotFit[i] || didNotFit[j]);
-    // The backend's own REC_HOST_RANGE (a value outside its link format) survives.
-    std::uint8_t add = unfit || v == VectorInput::OutsideScene || v == VectorInput::NegativeRadius
-                           ? static_cast<std::uint8_t>(contract::REC_HOST_RANGE)
-                           : 0;
-    if (!vectorComputes(v)) {
-      out.hit[k] = 0;
-      out.px[k] = out.py[k] = out.pz[k] = out.nx[k] = out.ny[k] = out.nz[k] = out.depth[k] = 0;
-      const std::uint8_t keep = out.flags[k] & contract::REC_HOST_RANGE;
-      out.flags[k] = static_cast<std::uint8_t>(keep | (v == VectorInput::NonFinite ? contract::REC_NONFINITE : 0));
-    }
-    out.flags[k] = static_cast<std::uint8_t>(out.flags[k] | add);
+    if (unfit || v == VectorInput::OutsideScene) out.flags[k] |= contract::REC_HOST_RANGE;
   }
 }
 
 void finishPairs(const CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out) {
-  if (!backend.setsRecordFlags()) setCpuRecordFlags(s, pairs, out.format, out);
+  setRecordFlags(backend, s, pairs, out);
   applyInputPolicy(s, pairs, out);
 }
 
