@@ -38,7 +38,12 @@ lazy val root = (project in file("."))
     // about how many seconds each took in CI (suiteSeconds; unlisted ones count 10). Within a
     // JVM, suites run one at a time.
     Test / testGrouping := {
-      val opts = ForkOptions().withRunJVMOptions((Test / javaOptions).value.toVector)
+      // The formal specs (src/test/scala/collide/formal, docs/formal.md) run chiseltest's bounded
+      // checks with z3 4.13 from PyPI, which tools/setup.sh puts in tools/.cache/z3: first on
+      // the test JVMs' PATH, ahead of any other z3 (Debian 12's 4.8.12 stalls on chiseltest's encoding).
+      val z3Dir = baseDirectory.value / "tools" / ".cache" / "z3"
+      val path = (z3Dir.getAbsolutePath +: sys.env.get("PATH").toSeq).mkString(java.io.File.pathSeparator)
+      val opts = ForkOptions().withRunJVMOptions((Test / javaOptions).value.toVector).withEnvVars(Map("PATH" -> path))
       def weight(t: TestDefinition) = suiteSeconds.getOrElse(t.name.split('.').last, 10)
       val groups = Array.fill(2)(Vector.empty[TestDefinition]); val load = Array.fill(2)(0)
       for (t <- (Test / definedTests).value.sortBy(t => (-weight(t), t.name))) {
