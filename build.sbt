@@ -11,7 +11,9 @@ val suiteSeconds = Map(
   "PucSpec" -> 330, "AfuSpec" -> 175, "ScpuSpec" -> 110, "AfuWorldSpec" -> 110, "BroadPhaseSpec" -> 75,
   "NewtonRaphsonErrorSpec" -> 45, "FpRsqrtSpec" -> 40, "GeneratedFreshSpec" -> 35, "FpSqrtSpec" -> 30,
   "FpRecipSpec" -> 30, "FpAddSpec" -> 25, "ScpuModelSpec" -> 25, "FpConvertSpec" -> 22,
-  "NewtonRaphsonCoreSpec" -> 20, "FpMulSpec" -> 18, "FpCompareSpec" -> 14)
+  "NewtonRaphsonCoreSpec" -> 20, "FpMulSpec" -> 18, "FpCompareSpec" -> 14,
+  "ContactPackerFormalSpec" -> 55, "ReadEngineFormalSpec" -> 25, "TagPoolFormalSpec" -> 15,
+  "PairDispatcherFormalSpec" -> 14)
 
 // sbt's default allows one forked test group at a time; the two groups below run together.
 Global / concurrentRestrictions := Seq(
@@ -39,10 +41,9 @@ lazy val root = (project in file("."))
     // JVM, suites run one at a time.
     Test / testGrouping := {
       // The formal specs (src/test/scala/collide/formal, docs/formal.md) run chiseltest's bounded
-      // checks with z3 4.13 from PyPI, which tools/setup.sh puts in tools/.cache/z3: first on
-      // the test JVMs' PATH, ahead of any other z3 (Debian 12's 4.8.12 stalls on chiseltest's encoding).
-      val z3Dir = baseDirectory.value / "tools" / ".cache" / "z3"
-      val path = (z3Dir.getAbsolutePath +: sys.env.get("PATH").toSeq).mkString(java.io.File.pathSeparator)
+      // checks with Yices 2, which tools/setup.sh puts in tools/.cache/smt: first on the test JVMs' PATH.
+      val smtDir = baseDirectory.value / "tools" / ".cache" / "smt"
+      val path = (smtDir.getAbsolutePath +: sys.env.get("PATH").toSeq).mkString(java.io.File.pathSeparator)
       val opts = ForkOptions().withRunJVMOptions((Test / javaOptions).value.toVector).withEnvVars(Map("PATH" -> path))
       def weight(t: TestDefinition) = suiteSeconds.getOrElse(t.name.split('.').last, 10)
       val groups = Array.fill(2)(Vector.empty[TestDefinition]); val load = Array.fill(2)(0)

@@ -72,6 +72,7 @@ object FormalSpecKit {
       if (ok) Right(v) else Left(s"$v: the formal specs need z3 4.13 or later (tools/setup.sh puts it in tools/.cache/z3)")
     }
 
+  val engine = chiseltest.formal.backends.Engines.byName(sys.env.getOrElse("FORMAL_ENGINE", "yices2"))
   /** A spec's bound: `default`, or FORMAL_DEPTH_<BLOCK> from the environment (deeper runs by hand). */
   def depth(block: String, default: Int): Int =
     sys.env.get(s"FORMAL_DEPTH_${block.toUpperCase}").map(_.toInt).getOrElse(default)
@@ -80,20 +81,21 @@ object FormalSpecKit {
 /** Helpers for the formal specs: each check timed and reported in seconds. */
 trait FormalSpecKit extends AnyFlatSpec with ChiselScalatestTester with Formal {
   private def timed[A](what: String)(body: => A): A = {
-    FormalSpecKit.z3Version.left.foreach(why => fail(why))
+    if (FormalSpecKit.engine == chiseltest.formal.backends.Z3EngineAnnotation) FormalSpecKit.z3Version.left.foreach(why => fail(why))
     val t0 = System.nanoTime()
     val a = body
     println(f"[formal] $what: ${(System.nanoTime() - t0) / 1e9}%.1f s")
     a
   }
   /** Every assertion holds for `depth` cycles after reset. */
+  private def annos(depth: Int) = Seq(BoundedCheck(depth), FormalSpecKit.engine)
   def prove[T <: Module](what: String, depth: Int)(gen: => T): Unit =
-    timed(s"$what, proven to depth $depth")(verify(gen, Seq(BoundedCheck(depth))))
+    timed(s"$what, proven to depth $depth")(verify(gen, annos(depth)))
   /** The check fails within `depth` cycles (a witness for Reach, a caught bug for SeededBug);
     * returns the exception's message (the step at which it failed). */
   def refute[T <: Module](what: String, depth: Int)(gen: => T): String =
     timed(s"$what, refuted within depth $depth") {
-      val e = intercept[FailedBoundedCheckException](verify(gen, Seq(BoundedCheck(depth))))
+      val e = intercept[FailedBoundedCheckException](verify(gen, annos(depth)))
       println(s"[formal]   ${e.getMessage}")
       e.getMessage
     }

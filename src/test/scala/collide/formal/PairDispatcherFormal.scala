@@ -62,8 +62,8 @@ class PairDispatcherFormal(p: PucParams, check: Check = Check.Prove) extends Mod
   private val acceptedW = FormalEnv.counter((io.pairs.fire && io.pairs.bits.line === watchLine).asUInt, 2)
   private val g = dut.io.groups.bits
   private val inGroup = io.watch >= g.first && io.watch < g.first +& g.cnt
-  /** A group the checker sees go (SeededBug: a group whose first pair is odd is missed, a dropped valid). */
-  private val groupSeen = if (check == Check.SeededBug) dut.io.groups.fire && !g.first(0) else dut.io.groups.fire
+  /** A group the checker sees go (SeededBug: a group whose first pair has bit 1 set is missed, a dropped valid). */
+  private val groupSeen = if (check == Check.SeededBug) dut.io.groups.fire && !g.first(1) else dut.io.groups.fire
   private val dispatchedW = FormalEnv.counter((groupSeen && inGroup).asUInt, 2)
   assert(dispatchedW <= acceptedW, "the watched pair is dispatched at most as often as it came in")
   when(dut.io.idle) { assert(dispatchedW === acceptedW, "idle: the watched pair, if it came in, was dispatched") }

@@ -1,7 +1,5 @@
 package collide.formal
 
-import collide.testutil.Slow
-
 import collide.afu._
 
 class PairDispatcherFormalSpec extends FormalSpecKit {
@@ -11,13 +9,13 @@ class PairDispatcherFormalSpec extends FormalSpecKit {
     maxReads = 2, maxWrites = 2, tagBits = 1, name = s"_formal$n")
   private val depth = FormalSpecKit.depth("PairDispatcher", 8)
 
-  it should "dispatch every pair it accepts at most once, and every one by the time it is idle" taggedAs Slow in {
+  it should "dispatch every pair it accepts at most once, and every one by the time it is idle" in {
     prove("PairDispatcher n=2", depth)(new PairDispatcherFormal(params(2)))
   }
-  it should "reach a drained state with the watched pair in and dispatched" taggedAs Slow in {
+  it should "reach a drained state with the watched pair in and dispatched" in {
     refute("PairDispatcher n=2 reach", depth)(new PairDispatcherFormal(params(2), Check.Reach))
   }
-  it should "fail the proof when the wrapper misses the groups whose first pair is odd (seeded bug)" taggedAs Slow in {
+  it should "fail the proof when the wrapper misses the groups whose first pair has bit 1 set (seeded bug)" in {
     refute("PairDispatcher n=2 seeded bug", depth)(new PairDispatcherFormal(params(2), Check.SeededBug))
   }
 }
