@@ -60,19 +60,26 @@ object FormalEnv {
 }
 
 object FormalSpecKit {
-  /** The z3 the checks run (the first on PATH; build.sbt puts tools/.cache/z3 there): Debian
-    * 12's 4.8.12 takes minutes to read these blocks' encoding before the first step, so an
-    * older one fails the spec at once, saying so, rather than stalling it (docs/formal.md). */
-  lazy val z3Version: Either[String, String] =
-    scala.util.Try(scala.sys.process.Process(Seq("z3", "--version")).!!.trim).toEither.left.map(_.getMessage).flatMap { v =>
+  /** The engine (FORMAL_ENGINE; docs/formal.md): Yices 2 unless named. */
+  val engineName = sys.env.getOrElse("FORMAL_ENGINE", "yices2")
+  val engine = chiseltest.formal.backends.Engines.byName(engineName)
+  private def version(cmd: String): Either[String, String] =
+    scala.util.Try(scala.sys.process.Process(Seq(cmd, "--version")).!!.trim).toEither.left
+      .map(e => s"$cmd not found on PATH (${e.getMessage}): run tools/setup.sh, which puts yices-smt2 in tools/.cache/smt")
+  /** The engine's solver, checked once before the first check so that a missing one fails the
+    * spec at once with the reason. An old z3 is refused too: Debian 12's 4.8.12 takes minutes to
+    * read these blocks' encoding before the first step. */
+  lazy val solverReady: Either[String, String] = engineName match {
+    case "yices2" => version("yices-smt2")
+    case "z3" => version("z3").flatMap { v =>
       val ok = """Z3 version (\d+)\.(\d+)""".r.findFirstMatchIn(v).exists { m =>
         val (major, minor) = (m.group(1).toInt, m.group(2).toInt)
         major > 4 || (major == 4 && minor >= 13)
       }
-      if (ok) Right(v) else Left(s"$v: the formal specs need z3 4.13 or later (tools/setup.sh puts it in tools/.cache/z3)")
+      if (ok) Right(v) else Left(s"$v: FORMAL_ENGINE=z3 needs z3 4.13 or later on PATH")
     }
-
-  val engine = chiseltest.formal.backends.Engines.byName(sys.env.getOrElse("FORMAL_ENGINE", "yices2"))
+    case _ => Right(engineName)
+  }
   /** A spec's bound: `default`, or FORMAL_DEPTH_<BLOCK> from the environment (deeper runs by hand). */
   def depth(block: String, default: Int): Int =
     sys.env.get(s"FORMAL_DEPTH_${block.toUpperCase}").map(_.toInt).getOrElse(default)
@@ -81,7 +88,7 @@ object FormalSpecKit {
 /** Helpers for the formal specs: each check timed and reported in seconds. */
 trait FormalSpecKit extends AnyFlatSpec with ChiselScalatestTester with Formal {
   private def timed[A](what: String)(body: => A): A = {
-    if (FormalSpecKit.engine == chiseltest.formal.backends.Z3EngineAnnotation) FormalSpecKit.z3Version.left.foreach(why => fail(why))
+    FormalSpecKit.solverReady.left.foreach(why => fail(why))
     val t0 = System.nanoTime()
     val a = body
     println(f"[formal] $what: ${(System.nanoTime() - t0) / 1e9}%.1f s")
