@@ -13,7 +13,8 @@ val suiteSeconds = Map(
   "FpRecipSpec" -> 30, "FpAddSpec" -> 25, "ScpuModelSpec" -> 25, "FpConvertSpec" -> 22,
   "NewtonRaphsonCoreSpec" -> 20, "FpMulSpec" -> 18, "FpCompareSpec" -> 14,
   "ContactPackerFormalSpec" -> 55, "ReadEngineFormalSpec" -> 25, "TagPoolFormalSpec" -> 15,
-  "PairDispatcherFormalSpec" -> 14, "ChunkMatcherFormalSpec" -> 30)
+  "PairDispatcherFormalSpec" -> 14, "ChunkMatcherFormalSpec" -> 30,
+  "ContactCollectorFormalSpec" -> 12)
 
 // sbt's default allows one forked test group at a time; the two groups below run together.
 Global / concurrentRestrictions := Seq(
