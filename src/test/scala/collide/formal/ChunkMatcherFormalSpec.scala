@@ -4,7 +4,7 @@ import collide.testutil.Slow
 
 class ChunkMatcherFormalSpec extends FormalSpecKit {
   behavior of "ChunkMatcher (formal: a 2-sphere chunk with a 2-sphere hit queue against none)"
-  // Proven to 6 (16 s); 10 did not finish in 8 minutes. The finish needs 7 cycles.
+  // Proven to 6 (15 s); 10 did not finish in 8 minutes. The finish needs 7 cycles.
   private val depth = FormalSpecKit.depth("ChunkMatcher", 6)
 
   it should "put out the same pairs in the same order with its hit queue as without, for the bound" in {

@@ -2,7 +2,6 @@ package collide.formal
 
 import chisel3._
 import chisel3.util.HasBlackBoxInline
-import collide.afu._
 
 /** The reset of a formal top: high in the first cycle only (an initial value, which the
   * formal flow honours), as chiseltest's bounded check and a real reset do. */
@@ -50,16 +49,10 @@ object EmitFormal extends App {
   }
   emit("TagPool", new TagPoolFormal(4, 2))
   emit("TagPool_bug", new TagPoolFormal(4, 2, Check.SeededBug))
-  val pd = PucParams(scpus = 2, linkWidth = 16, scpuTagBits = 24, scpuLatency = 1, maxSpheres = 64,
-    maxReads = 2, maxWrites = 2, tagBits = 1, name = "_formal2")
-  emit("PairDispatcher", new PairDispatcherFormal(pd))
-  emit("PairDispatcher_bug", new PairDispatcherFormal(pd, Check.SeededBug))
-  val pp = PucParams(scpus = 2, linkWidth = 32, scpuTagBits = 24, scpuLatency = 1, maxSpheres = 64,
-    maxReads = 2, maxWrites = 2, tagBits = 1, records = RecordLayout.Full, name = "_formal")
-  emit("ContactPacker", new ContactPackerFormal(pp))
-  emit("ContactPacker_bug", new ContactPackerFormal(pp, Check.SeededBug))
-  val pr = PucParams(scpus = 1, linkWidth = 16, scpuTagBits = 24, scpuLatency = 1, maxSpheres = 64,
-    maxReads = 2, maxWrites = 2, tagBits = 1, name = "_formal")
-  emit("ReadEngine", new ReadEngineFormal(pr))
-  emit("ReadEngine_bug", new ReadEngineFormal(pr, Check.SeededBug))
+  emit("PairDispatcher", new PairDispatcherFormal(FormalParams.dispatcher))
+  emit("PairDispatcher_bug", new PairDispatcherFormal(FormalParams.dispatcher, Check.SeededBug))
+  emit("ContactPacker", new ContactPackerFormal(FormalParams.records))
+  emit("ContactPacker_bug", new ContactPackerFormal(FormalParams.records, Check.SeededBug))
+  emit("ReadEngine", new ReadEngineFormal(FormalParams.reader))
+  emit("ReadEngine_bug", new ReadEngineFormal(FormalParams.reader, Check.SeededBug))
 }

@@ -5,6 +5,8 @@ import chisel3.util._
 import chiseltest._
 import chiseltest.formal._
 import org.scalatest.flatspec.AnyFlatSpec
+import collide.afu.{PucParams, RecordLayout}
+import collide.testutil.Slow
 
 /** What a formal wrapper is built to check (docs/formal.md):
   *  - Prove: its assertions hold at every cycle up to the bound;
@@ -31,12 +33,6 @@ object FormalEnv {
     val was = RegNext(d.bits)
     when(waiting) { assume(d.valid, "producer holds valid"); assume(d.bits.asUInt === was.asUInt, "producer holds bits") }
   }
-  /** The block, as producer of `d`, holds valid and bits from offer until fire. */
-  def assertHolds[T <: Data](d: DecoupledIO[T], what: String): Unit = {
-    val waiting = RegNext(d.valid && !d.ready, false.B)
-    val was = RegNext(d.bits)
-    when(waiting) { assert(d.valid && d.bits.asUInt === was.asUInt, s"$what: valid and bits hold until fire") }
-  }
   /** `x` keeps the value it has in the first cycle after reset. */
   def stable(x: Data): Unit = {
     val first = RegInit(true.B); first := false.B
@@ -59,19 +55,32 @@ object FormalEnv {
   }
 }
 
+/** The small parameterizations the wrappers are checked at (the specs and EmitFormal share them). */
+object FormalParams {
+  /** Two SCPUs on a 16-bit link: 16-pair lines, two lanes. */
+  val dispatcher = PucParams(scpus = 2, linkWidth = 16, scpuTagBits = 24, scpuLatency = 1, maxSpheres = 64,
+    maxReads = 2, maxWrites = 2, tagBits = 1, name = "_formal2")
+  /** Two fp32 SCPUs with full records: two records a line (the collector and the packer). */
+  val records = PucParams(scpus = 2, linkWidth = 32, scpuTagBits = 24, scpuLatency = 1, maxSpheres = 64,
+    maxReads = 2, maxWrites = 2, tagBits = 1, records = RecordLayout.Full, name = "_formal")
+  /** One SCPU, two read tags: a 2-line pair buffer and an 8-line sphere table. */
+  val reader = PucParams(scpus = 1, linkWidth = 16, scpuTagBits = 24, scpuLatency = 1, maxSpheres = 64,
+    maxReads = 2, maxWrites = 2, tagBits = 1, name = "_formal")
+}
+
 object FormalSpecKit {
   /** The engine (FORMAL_ENGINE; docs/formal.md): Yices 2 unless named. */
   val engineName = sys.env.getOrElse("FORMAL_ENGINE", "yices2")
   val engine = chiseltest.formal.backends.Engines.byName(engineName)
-  private def version(cmd: String): Either[String, String] =
+  private def version(cmd: String, hint: String): Either[String, String] =
     scala.util.Try(scala.sys.process.Process(Seq(cmd, "--version")).!!.trim).toEither.left
-      .map(e => s"$cmd not found on PATH (${e.getMessage}): run tools/setup.sh, which puts yices-smt2 in tools/.cache/smt")
+      .map(e => s"$cmd not found on PATH (${e.getMessage}): $hint")
   /** The engine's solver, checked once before the first check so that a missing one fails the
     * spec at once with the reason. An old z3 is refused too: Debian 12's 4.8.12 takes minutes to
     * read these blocks' encoding before the first step. */
   lazy val solverReady: Either[String, String] = engineName match {
-    case "yices2" => version("yices-smt2")
-    case "z3" => version("z3").flatMap { v =>
+    case "yices2" => version("yices-smt2", "run tools/setup.sh, which puts it in tools/.cache/smt")
+    case "z3" => version("z3", "FORMAL_ENGINE=z3 needs z3 4.13 or later on PATH").flatMap { v =>
       val ok = """Z3 version (\d+)\.(\d+)""".r.findFirstMatchIn(v).exists { m =>
         val (major, minor) = (m.group(1).toInt, m.group(2).toInt)
         major > 4 || (major == 4 && minor >= 13)
@@ -98,6 +107,12 @@ trait FormalSpecKit extends AnyFlatSpec with ChiselScalatestTester with Formal {
   private def annos(depth: Int) = Seq(BoundedCheck(depth), FormalSpecKit.engine)
   def prove[T <: Module](what: String, depth: Int)(gen: => T): Unit =
     timed(s"$what, proven to depth $depth")(verify(gen, annos(depth)))
+  /** One proof as two cases: to `quick` cycles in the suite and to `full` tagged Slow, where the
+    * full bound takes minutes (docs/formal.md). */
+  def provenQuickAndSlow[T <: Module](should: String, what: String, quick: Int, full: Int)(gen: => T): Unit = {
+    it should s"$should, for $quick cycles" in { prove(what, quick)(gen) }
+    it should s"$should, for $full cycles" taggedAs Slow in { prove(what, full)(gen) }
+  }
   /** The check fails within `depth` cycles (a witness for Reach, a caught bug for SeededBug);
     * returns the exception's message (the step at which it failed). */
   def refute[T <: Module](what: String, depth: Int)(gen: => T): String =
