@@ -45,7 +45,14 @@ lazy val root = (project in file("."))
       // checks with Yices 2, which tools/setup.sh puts in tools/.cache/smt: first on the test JVMs' PATH.
       val smtDir = baseDirectory.value / "tools" / ".cache" / "smt"
       val path = (smtDir.getAbsolutePath +: sys.env.get("PATH").toSeq).mkString(java.io.File.pathSeparator)
-      val opts = ForkOptions().withRunJVMOptions((Test / javaOptions).value.toVector).withEnvVars(Map("PATH" -> path))
+      // chiseltest compiles a Verilator model with make and Verilator's defaults (-Os for the
+      // model's hot code, which comes after any VerilatorCFlags): for the suite's short runs
+      // that is most of a case's time. Make takes variables from MAKEFLAGS as if given on its
+      // command line, so the test JVMs' builds compile at -O0: about half the build CPU time
+      // (bench/results/suite).
+      val makeFlags = (sys.env.get("MAKEFLAGS").toSeq :+ "OPT_FAST=-O0 OPT_SLOW=-O0 OPT_GLOBAL=-O0").mkString(" ")
+      val opts = ForkOptions().withRunJVMOptions((Test / javaOptions).value.toVector)
+        .withEnvVars(Map("PATH" -> path, "MAKEFLAGS" -> makeFlags))
       def weight(t: TestDefinition) = suiteSeconds.getOrElse(t.name.split('.').last, 10)
       val groups = Array.fill(2)(Vector.empty[TestDefinition]); val load = Array.fill(2)(0)
       for (t <- (Test / definedTests).value.sortBy(t => (-weight(t), t.name))) {

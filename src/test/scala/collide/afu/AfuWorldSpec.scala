@@ -2,12 +2,10 @@ package collide.afu
 
 import chisel3._
 import chiseltest._
-import chiseltest.simulator.{VerilatorBackendAnnotation, VerilatorCFlags}
-import chiseltest.internal.CachingAnnotation
 import org.scalatest.flatspec.AnyFlatSpec
 import collide.scpu.ScpuConfig
 import collide.scpu.model.ScpuModel
-import collide.testutil.{Seeds, Slow}
+import collide.testutil.{Builds, Seeds, Slow}
 import collide.world.BroadPhaseWorlds
 import collide.world.model.{BroadPhaseModel, WorldSphere}
 
@@ -19,7 +17,8 @@ import collide.world.model.{BroadPhaseModel, WorldSphere}
 class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "Afu in world mode"
 
-  private val annos = Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")), CachingAnnotation)
+  // Cases of one configuration share its Verilator build (Builds).
+  private def annos(cfg: AfuConfig) = Builds.verilator("AfuWorldSpec", cfg.id)
   private val behaviours = Seq(LinkBehaviour.hostile, LinkBehaviour.harp, LinkBehaviour.ideal)
 
   /** The records world mode must write: every i < j of finite spheres that ScpuModel calls
@@ -154,7 +153,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   def endToEnd(cfg: AfuConfig, spec: String): Unit = {
     val rng = Seeds.rng(s"AfuWorldSpec-$spec")
-    test(new Afu(cfg)).withAnnotations(annos) { dut =>
+    test(new Afu(cfg)).withAnnotations(annos(cfg)) { dut =>
       dut.clock.setTimeout(0)
       var contacts = 0L; var candidates = 0L
       for (((label, world), i) <- worlds(rng, cfg).zipWithIndex) {
@@ -203,7 +202,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "stop at the contact buffer's capacity, refuse dense world runs, and hold maxSpheres spheres" in {
     val rng = Seeds.rng("AfuWorldSpec-edges")
-    test(new Afu(small)).withAnnotations(annos) { dut =>
+    test(new Afu(small)).withAnnotations(annos(small)) { dut =>
       dut.clock.setTimeout(0)
       val cloud = BroadPhaseWorlds.bits(small.scpu.linkFormat, BroadPhaseWorlds.uniform(rng, 120, contacts = 4))
       for (cap <- Seq(0L, 1L, 7L)) {
@@ -227,7 +226,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "find every contact of every hard case through the run queue, the next table loading while a run computes, with queued pair-mode and refused runs among them" in {
     val rng = Seeds.rng("AfuWorldSpec-queue")
-    test(new Afu(queued)).withAnnotations(annos) { dut =>
+    test(new Afu(queued)).withAnnotations(annos(queued)) { dut =>
       dut.clock.setTimeout(0)
       val ws = worlds(rng, queued)
       for ((beh, b) <- behaviours.zipWithIndex) {
@@ -245,7 +244,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "load each queued world's table while the run before it computes, fed to its broad phase as it arrives (no load cycles after the first run; started ahead of its run, never late), also where a run is too short to hide the next read" in {
     val rng = Seeds.rng("AfuWorldSpec-prefetch")
-    test(new Afu(queued)).withAnnotations(annos) { dut =>
+    test(new Afu(queued)).withAnnotations(annos(queued)) { dut =>
       dut.clock.setTimeout(0)
       val clouds = Seq.fill(5)(BroadPhaseWorlds.bits(queued.scpu.linkFormat, BroadPhaseWorlds.uniform(rng, 200, contacts = 2)))
       val st = checkQueue(dut, queued, clouds.zipWithIndex.map { case (c, i) => s"cloud $i" -> Queued(Left(c)) }, LinkBehaviour.harp, rng.nextLong())

@@ -3,7 +3,7 @@ package collide.world
 import chisel3._
 import chiseltest._
 import org.scalatest.flatspec.AnyFlatSpec
-import collide.testutil.Seeds
+import collide.testutil.{Builds, Seeds}
 import collide.world.model.BroadPhaseModel
 
 class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
@@ -11,6 +11,8 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   private val maxItems = 256
   private val bucketsLog2 = 7
+  // On Verilator: treadle took minutes for the two-port sorts' counter memories.
+  private def verilator(design: String) = Builds.verilator("BucketSortSpec", design)
 
   private def waitIdle(dut: BucketSort): Unit = {
     var n = 0
@@ -108,7 +110,7 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
   for ((wordLog2, copies, ports) <- Seq((3, 1, 1), (0, 1, 1), (3, 3, 2), (0, 2, 2), (4, 2, 2)))
   it should s"sort like the golden model with ${1 << wordLog2} counters a word, $copies copies and $ports ports: repeated buckets back to back, gaps, empty and full worlds, one after another, each scatter clearing the marks of the last" in {
     val rng = Seeds.rng(s"BucketSortSpec-w$wordLog2-c$copies-p$ports")
-    test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports)) { dut =>
+    test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports)).withAnnotations(verilator(s"w$wordLog2-c$copies-p$ports")) { dut =>
       dut.clock.setTimeout(0)
       val worlds = Seq(
         ("empty", Seq.empty[Int], 3),
@@ -134,7 +136,7 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
   for ((wordLog2, copies, ports) <- Seq((3, 2, 1), (2, 3, 2)))
   it should s"clear its counters behind the scatter while the lookups serve the world ($copies copies, $ports ports), so that the next world's clear costs no cycle, and one asked early waits for it" in {
     val rng = Seeds.rng(s"BucketSortSpec-behind-w$wordLog2-c$copies-p$ports")
-    test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports, clearBehind = true)) { dut =>
+    test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports, clearBehind = true)).withAnnotations(verilator(s"behind-w$wordLog2-c$copies-p$ports")) { dut =>
       dut.clock.setTimeout(0)
       val words = (1 << bucketsLog2) >> wordLog2
       var lastHurried = false // the world before asked its clear while the clearing behind ran
@@ -158,7 +160,7 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
   it should "hold items wider than its positions, as a group of a four-port sort holds its half of a larger table" in {
     val rng = Seeds.rng("BucketSortSpec-wide-items")
     // Positions 0..127, items 9 bits: the second half of a 512-sphere table's indices.
-    test(new BucketSort(128, bucketsLog2, 4, 2, 2, itemBits = 9)) { dut =>
+    test(new BucketSort(128, bucketsLog2, 4, 2, 2, itemBits = 9)).withAnnotations(verilator("wide-items")) { dut =>
       dut.clock.setTimeout(0)
       for ((label, n, usedLog2) <- Seq(("full half", 128, 5), ("part", 77, bucketsLog2), ("one", 1, 2))) {
         val items = Seq.tabulate(n)(i => (300 + i, rng.nextInt(1 << usedLog2)))
