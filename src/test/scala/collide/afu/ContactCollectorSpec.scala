@@ -5,7 +5,7 @@ import chiseltest._
 import org.scalatest.flatspec.AnyFlatSpec
 import collide.fp.FpFlags
 import collide.scpu.ContactKind
-import collide.testutil.Seeds
+import collide.testutil.{Builds, Seeds}
 
 /** The ContactCollector alone against a Scala model of its record stream: groups of random
   * size and invalid pairs, SCPU results that arrive late and out of step, and a packer whose
@@ -75,7 +75,7 @@ class ContactCollectorSpec extends AnyFlatSpec with ChiselScalatestTester {
         g
       }
       val want = gs.flatMap(model(p, _, dense, keepFlagged))
-      test(new ContactCollector(p)) { c =>
+      test(new ContactCollector(p)).withAnnotations(Builds.verilator("ContactCollectorSpec", s"n$n-w$w-${records.name}")) { c =>
         c.io.dense.poke(dense.B)
         c.io.keepFlagged.poke(keepFlagged.B)
         // Each SCPU's results in dispatch order, shown late at random; groups offered at random.

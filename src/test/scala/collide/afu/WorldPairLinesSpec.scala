@@ -13,6 +13,9 @@ import collide.testutil.Seeds
   * for all of them. */
 class WorldPairLinesSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "WorldPairLines"
+  // 32 lanes on Verilator (treadle took 25-45 s a case); fewer lanes run quicker on treadle
+  // than a Verilator build takes.
+  private val verilator = Seq(chiseltest.simulator.VerilatorBackendAnnotation)
 
   private val itemW = 12
   private def params(lanes: Int) =
@@ -26,7 +29,7 @@ class WorldPairLinesSpec extends AnyFlatSpec with ChiselScalatestTester {
     val p = params(lanes)
     val ppl = p.layout.pairsPerLine
     val rnd = Seeds.rng(s"WorldPairLinesSpec-l$lanes-o$offer-t$take")
-    test(new WorldPairLines(p, itemW, lanes)) { dut =>
+    test(new WorldPairLines(p, itemW, lanes)).withAnnotations(if (lanes >= 32) verilator else Seq()) { dut =>
       dut.clock.setTimeout(0)
       dut.io.start.poke(true.B); dut.clock.step(); dut.io.start.poke(false.B)
       val next = Array.fill(lanes)(0)

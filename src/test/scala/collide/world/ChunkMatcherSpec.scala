@@ -9,6 +9,9 @@ import collide.world.model.{BroadPhaseModel, SphereClass}
 
 class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "ChunkMatcher"
+  // The two cases with the longest runs take Verilator (seconds to build); treadle took
+  // over 20 s for each. The others are quicker on treadle than a Verilator build.
+  private val verilator = Seq(chiseltest.simulator.VerilatorBackendAnnotation)
 
   private val itemW = 10; private val cellBits = 8; private val qWidth = 17; private val chunk = 8
   import ChunkMatcherSpec._
@@ -233,7 +236,7 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
   private def nearRounds(name: String, near: Int): (Int, Int, Int) = {
     val rng = Seeds.rng(name)
     var same = 0; var rounds = 0; var pairs = 0
-    test(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue = 2, nearBits = near, wide = 2)) { dut =>
+    test(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue = 2, nearBits = near, wide = 2)).withAnnotations(verilator) { dut =>
       dut.clock.setTimeout(0)
       for (_ <- 0 until Seeds.cases(60)) {
         val (members, probes, slack) = nearChunk(rng, 16 * rng.nextInt(50))
@@ -288,7 +291,7 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
     val probes = keys.map { case (n, (q, r)) => K(100 + n, Seq(0, 0, 0), at((n / 3) % 3, q), r) }
     val rng = Seeds.rng("ChunkMatcherSpec-extremes") // the back-pressure only
     val entries = probes.map(P(_, Seq(0, 0, 0), Seq(0, 0, 0), anyCell = true, own = false))
-    test(new ChunkMatcher(itemW, cellBits, qw, chunk)) { dut =>
+    test(new ChunkMatcher(itemW, cellBits, qw, chunk)).withAnnotations(verilator) { dut =>
       dut.clock.setTimeout(0)
       var pairs = 0; var misses = 0
       for (slack <- Seq(0, 1, 15); group <- members.grouped(chunk)) {
