@@ -2,7 +2,7 @@ package collide.afu
 
 import chisel3._
 import chiseltest._
-import chiseltest.simulator.{VerilatorBackendAnnotation, VerilatorCFlags, WriteVcdAnnotation}
+import chiseltest.simulator.{VerilatorBackendAnnotation, WriteVcdAnnotation}
 import org.scalatest.flatspec.AnyFlatSpec
 import collide.testutil.{Seeds, Slow}
 
@@ -13,7 +13,7 @@ import collide.testutil.{Seeds, Slow}
 class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "Afu"
 
-  val annos = Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1"))) ++
+  val annos = Seq(VerilatorBackendAnnotation) ++
     (if (sys.props.contains("vcd")) Seq(WriteVcdAnnotation) else Nil)
 
   def endToEnd(cfg: AfuConfig, worlds: Int, maxPairs: Int = 120,

@@ -53,7 +53,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  val verilator = Seq(chiseltest.simulator.VerilatorBackendAnnotation, chiseltest.simulator.VerilatorCFlags(Seq("-O1")))
+  val verilator = Seq(chiseltest.simulator.VerilatorBackendAnnotation)
   it should "account for every pair with one SCPU on a hostile link (binary32)" in {
     soak(1, 32, Seeds.cases(12), Seq(LinkBehaviour.ideal, LinkBehaviour.hostile), verilator)
   }
