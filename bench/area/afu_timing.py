@@ -29,9 +29,8 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-import area  # noqa: E402
-import isoarea  # noqa: E402
+from sweeplib import area  # noqa: E402
+from sweeplib import isoarea  # noqa: E402
 import reached_clock  # noqa: E402
 
 FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES],

@@ -25,8 +25,7 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-import area  # noqa: E402
+from sweeplib import area  # noqa: E402
 from afu_timing import rtl_commit  # noqa: E402
 
 BIN = Path(sys.executable).parent

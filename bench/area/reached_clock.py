@@ -22,9 +22,8 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-import area  # noqa: E402
-import isoarea  # noqa: E402
+from sweeplib import area  # noqa: E402
+from sweeplib import isoarea  # noqa: E402
 
 PNR_CSV = ROOT / "bench/results/pnr/operators.csv"
 

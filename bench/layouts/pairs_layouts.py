@@ -30,11 +30,10 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-import build  # noqa: E402
-import generate  # noqa: E402
-import machine  # noqa: E402
-from sweeps import Config  # noqa: E402
+from sweeplib import build  # noqa: E402
+from sweeplib import generate  # noqa: E402
+from sweeplib import machine  # noqa: E402
+from sweeplib.sweeps import Config  # noqa: E402
 
 LAYOUTS = ("full", "derived", "full-masked", "derived-masked")
 LINKS = ("ideal", "qpi")

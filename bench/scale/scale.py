@@ -35,9 +35,9 @@ matplotlib.use("Agg")  # files only
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT / "bench" / "world"), str(ROOT / "bench" / "sweeplib")]
+sys.path.insert(0, str(ROOT / "bench" / "world"))
 from world import machine, write_results  # noqa: E402
-from machine import commit  # noqa: E402
+from sweeplib.machine import commit  # noqa: E402
 
 PILE_SIZES = (1000, 4000, 16000, 64000, 256000, 1000000)
 DIAMOND_HMAX = (14, 24, 46, 100)

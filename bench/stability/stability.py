@@ -26,9 +26,9 @@ matplotlib.use("Agg")  # files only
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT / "bench" / "world"), str(ROOT / "bench" / "sweeplib")]
+sys.path.insert(0, str(ROOT / "bench" / "world"))
 from world import machine, write_results  # noqa: E402
-from machine import commit  # noqa: E402
+from sweeplib.machine import commit  # noqa: E402
 
 SCENES = ("rest_pile", "rest_stack")
 # The arithmetic presets of the list on the CPU model, and the CPU backends beside them.

@@ -6,7 +6,7 @@ import io
 import subprocess
 from pathlib import Path
 
-from paths import BUILD, ROOT, rtl_hash, tree_hash, write_atomic
+from .paths import BUILD, ROOT, rtl_hash, tree_hash, write_atomic
 
 PAIRS, SEED = 10000, 20261122
 

@@ -7,7 +7,7 @@ import re
 import subprocess
 from pathlib import Path
 
-from paths import BUILD, ROOT, write_atomic
+from .paths import BUILD, ROOT, write_atomic
 
 CACHE = BUILD / "area"
 

@@ -7,8 +7,8 @@ import shutil
 import subprocess
 from pathlib import Path
 
-from paths import BUILD, ROOT, host_hash, write_atomic
-import generate
+from .paths import BUILD, ROOT, host_hash, write_atomic
+from . import generate
 
 HOST = BUILD / "host"
 

@@ -15,18 +15,16 @@ import os
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-import local  # noqa: E402
-import machine  # noqa: E402
-import plots  # noqa: E402
-import report  # noqa: E402
-import slurm  # noqa: E402
-import status  # noqa: E402
-import sweep as sweeplib  # noqa: E402
-from paths import EXEC, RESULTS, write_atomic  # noqa: E402
-from sweeps import SWEEPS  # noqa: E402
-from tasks import Records  # noqa: E402
+from . import local
+from . import machine
+from . import plots
+from . import report
+from . import slurm
+from . import status
+from . import sweep as sweeplib
+from .paths import EXEC, RESULTS, write_atomic
+from .sweeps import SWEEPS
+from .tasks import Records
 
 
 def parser():

@@ -4,7 +4,7 @@ import re
 import subprocess
 from pathlib import Path
 
-from paths import BUILD, ROOT, rtl_hash, write_atomic
+from .paths import BUILD, ROOT, rtl_hash, write_atomic
 
 GEN = BUILD / "gen"
 

@@ -3,8 +3,8 @@ as the tasks it needs are done (graphlib's TopologicalSorter hands out the ready
 import graphlib
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 
-from progress import Bar
-from tasks import Records, execute
+from .progress import Bar
+from .tasks import Records, execute
 
 
 def run(tasks, records: Records, jobs: int, desc: str) -> dict:

@@ -3,7 +3,7 @@
 import platform
 import subprocess
 
-from paths import BUILD, ROOT, write_atomic
+from .paths import BUILD, ROOT, write_atomic
 
 NODES = BUILD / "nodes"
 

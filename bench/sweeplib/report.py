@@ -2,7 +2,8 @@
 import csv
 from pathlib import Path
 
-from plots import PAPER_AFU_NS_PER_COLLISION, PAPER_ODE_NS_PER_COLLISION, f, sel
+from .plots import PAPER_AFU_NS_PER_COLLISION, PAPER_ODE_NS_PER_COLLISION, f, sel
+from . import isoarea
 
 PAPER_TABLE_III = {"dsp": 224, "logic_elements": 200844, "memory_bits": 13600474}
 
@@ -132,8 +133,8 @@ def isoarea_table(rows, results: Path):
     """Per arithmetic: the SCPUs that fit the chip under each calibration and the time per
     collision at that count on every link (isoarea.py; 16+ SCPUs run in the 16-SCPU time)."""
     import csv
-    import isoarea
-    from sweeps import ISOAREA_SPECS, built_count
+    from . import isoarea
+    from .sweeps import ISOAREA_SPECS, built_count
     load = lambda n: list(csv.DictReader(open(results / n / f"{n}.csv", newline="")))
     arith, pucs = load("arith"), load("scpus")
     fit, areas = isoarea.fits(arith, pucs), isoarea.scpu_areas(arith)
@@ -245,7 +246,7 @@ def write(name, rows, out: Path) -> Path:
                      f"{PAPER_AFU_NS_PER_COLLISION:.0f} ns/collision (AFU) and {PAPER_ODE_NS_PER_COLLISION:.0f} "
                      "ns/collision (ODE) on average.\n")
     if name == "isoarea":
-        parts += [f"\n## At a fixed chip ({__import__('isoarea').CHIP['name']}; calibration in sweeplib/isoarea.py)\n",
+        parts += [f"\n## At a fixed chip ({isoarea.CHIP['name']}; calibration in sweeplib/isoarea.py)\n",
                   isoarea_table(rows, out.parent)]
     if name in ("links", "masked"):
         parts += ["\n## ns per collision on every link (modelled; in brackets: modelled / the link model's bound)\n",

@@ -6,7 +6,7 @@ import re
 import subprocess
 from pathlib import Path
 
-from paths import BUILD, ROOT, write_atomic
+from .paths import BUILD, ROOT, write_atomic
 
 SCENES = BUILD / "scenes"
 

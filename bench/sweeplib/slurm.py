@@ -12,11 +12,11 @@ import signal
 import time
 from pathlib import Path
 
-import slurmctl
-import storage
-from paths import BUILD, ROOT, write_atomic
-from progress import Bar
-from tasks import KINDS, Records, node
+from . import slurmctl
+from . import storage
+from .paths import BUILD, ROOT, write_atomic
+from .progress import Bar
+from .tasks import KINDS, Records, node
 
 # (kind, size) -> (CPUs, memory, time limit) of a task: estimates from the steps' costs on
 # a 2-core machine (bench/slurm.md, "What each stage costs") with room to spare; sbt runs
@@ -115,7 +115,7 @@ class Driver:
 set -euo pipefail
 cd {ROOT}
 task="$(sed -n "$((SLURM_ARRAY_TASK_ID + 1))p" {listing})"
-exec {ROOT / 'tools' / 'pyenv'} {ROOT / 'bench' / 'sweeplib' / 'worker.py'} {plan} "$task"
+exec {ROOT / 'tools' / 'pyenv'} -m sweeplib.worker {plan} "$task"
 """)
             for t in group:
                 self.records.clear(t.id)

@@ -3,9 +3,9 @@ interrupted or to do, from the caches, the task records and (for Slurm jobs) squ
 import os
 import shutil
 
-import slurmctl
-from slurm import Jobs
-from tasks import KINDS, Records, node
+from . import slurmctl
+from .slurm import Jobs
+from .tasks import KINDS, Records, node
 
 ORDER = ("done", "running", "queued", "failed", "skipped", "interrupted", "to do")
 

@@ -9,14 +9,14 @@ import csv
 import json
 from pathlib import Path
 
-import accuracy
-import area
-import build
-import generate
-import runs
-from paths import BUILD, EXEC, host_hash, rtl_hash, write_atomic
-from sweeps import Scene, Sweep
-from tasks import Task, node
+from . import accuracy
+from . import area
+from . import build
+from . import generate
+from . import runs
+from .paths import BUILD, EXEC, host_hash, rtl_hash, write_atomic
+from .sweeps import Scene, Sweep
+from .tasks import Task, node
 
 # Rough cost of each step in seconds on a 2-core machine: the progress bar's weights, so
 # its time-left estimate is about right before many steps have been timed.

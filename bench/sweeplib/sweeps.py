@@ -10,7 +10,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 import re
 
-import isoarea
+from . import isoarea
 
 
 @dataclass(frozen=True)

@@ -12,8 +12,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-import machine
-from paths import write_atomic
+from . import machine
+from .paths import write_atomic
 
 # The order of the stages: a task only needs tasks of its own or an earlier kind.
 KINDS = ("generate", "accuracy", "build", "area", "timing", "run")

@@ -1,19 +1,17 @@
-"""One Slurm task: `worker.py PLAN TASK_ID` rebuilds the sweep's runner from the plan the
+"""One Slurm task: `python -m sweeplib.worker PLAN TASK_ID` rebuilds the sweep's runner from the plan the
 driver wrote (slurm.py), runs that task on this node and records how it went (tasks.execute).
 Exits 1 when the task failed or could not run, so Slurm's own accounting agrees."""
 import json
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from sweep import Runner  # noqa: E402
-from tasks import Records, execute  # noqa: E402
+from .sweep import Runner
+from .tasks import Records, execute
 
 
 def main(argv):
     if len(argv) != 2:
-        print("usage: worker.py PLAN.json TASK_ID", file=sys.stderr)
+        print("usage: python -m sweeplib.worker PLAN.json TASK_ID", file=sys.stderr)
         return 2
     plan, tid = Path(argv[0]), argv[1]
     if not plan.exists():

@@ -8,15 +8,14 @@ import unittest
 from pathlib import Path
 from unittest import mock
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sweeplib"))
 
-import local  # noqa: E402
-import slurm  # noqa: E402
-import status  # noqa: E402
-import storage  # noqa: E402
-import sweep  # noqa: E402
-import tasks  # noqa: E402
-from sweeps import SWEEPS, Sweep  # noqa: E402
+from sweeplib import local  # noqa: E402
+from sweeplib import slurm  # noqa: E402
+from sweeplib import status  # noqa: E402
+from sweeplib import storage  # noqa: E402
+from sweeplib import sweep  # noqa: E402
+from sweeplib import tasks  # noqa: E402
+from sweeplib.sweeps import SWEEPS, Sweep  # noqa: E402
 
 
 class Fake:

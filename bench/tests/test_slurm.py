@@ -15,17 +15,16 @@ import time
 import unittest
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sweeplib"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-import build  # noqa: E402
-import slurm  # noqa: E402
+from sweeplib import build  # noqa: E402
+from sweeplib import slurm  # noqa: E402
 import slurm_cluster  # noqa: E402
-import slurmctl  # noqa: E402
-import status  # noqa: E402
-import sweep  # noqa: E402
-from paths import BUILD, EXEC  # noqa: E402
-from sweeps import SWEEPS  # noqa: E402
+from sweeplib import slurmctl  # noqa: E402
+from sweeplib import status  # noqa: E402
+from sweeplib import sweep  # noqa: E402
+from sweeplib.paths import BUILD, EXEC  # noqa: E402
+from sweeplib.sweeps import SWEEPS  # noqa: E402
 
 SMOKE = os.environ.get("COLLIDE_SWEEP_SMOKE") == "1"
 CLUSTER = None
@@ -69,7 +68,7 @@ def active(job_ids) -> list:
                             "set COLLIDE_SWEEP_SMOKE=1, as tools/test does")
 class SlurmExecutor(unittest.TestCase):
     def test_the_smoke_sweep_through_slurm_gives_the_local_executors_csv_apart_from_timings(self):
-        import cli
+        from sweeplib import cli
         with tempfile.TemporaryDirectory() as d:
             self.assertEqual(cli.main(["run", "smoke", "--out", f"{d}/local"]), 0)  # cached after SmokeSweep
             # The Slurm run redoes the runs and the build (a no-op for Ninja); the Verilog stays cached.

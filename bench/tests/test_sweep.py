@@ -8,14 +8,13 @@ import tempfile
 import unittest
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sweeplib"))
 
-import plots  # noqa: E402
-import report  # noqa: E402
-import runs  # noqa: E402
-import isoarea  # noqa: E402
-import sweep  # noqa: E402
-from sweeps import SWEEPS, Config, Scene  # noqa: E402
+from sweeplib import plots  # noqa: E402
+from sweeplib import report  # noqa: E402
+from sweeplib import runs  # noqa: E402
+from sweeplib import isoarea  # noqa: E402
+from sweeplib import sweep  # noqa: E402
+from sweeplib.sweeps import SWEEPS, Config, Scene  # noqa: E402
 
 MANIFEST = {"afu": {"peakPairsPerCycle": 16, "ram": {"sphereTableBits": 2097152, "pairBufferBits": 34048}},
             "scpu": {"format": {"name": "fp32"}, "distance": "sqrt-recip", "sqrtAlg": "dr", "recipAlg": "dr",
@@ -310,7 +309,7 @@ class Area(unittest.TestCase):
           "module Top_a(\n  input x\n);\n  Mid_a m (\n    .x(x)\n  );\n  Other_a o (\n    .x(x)\n  );\nendmodule\n")
 
     def test_a_blocks_verilog_is_its_module_and_everything_below_it(self):
-        import area
+        from sweeplib import area
         pre, mods = area.subtree(self.SV, "Mid_a")
         self.assertEqual(pre, "`define X 1\n")
         self.assertEqual([m.split("(")[0] for m in mods], ["module Leaf_a", "module Mid_a"])
@@ -320,7 +319,7 @@ class Area(unittest.TestCase):
             area.subtree(self.SV, "Nope")
 
     def test_a_black_box_keeps_its_ports_and_nothing_below_it(self):
-        import area
+        from sweeplib import area
         _, mods = area.subtree(self.SV, "Top_a", black={"Mid_a"})
         self.assertEqual(mods[0], "(* blackbox *)\nmodule Mid_a(\n  input x\n);\nendmodule\n")
         self.assertEqual([m.split("(")[0] for m in mods[1:]], ["module Other_a", "module Top_a"])
@@ -330,7 +329,7 @@ class Area(unittest.TestCase):
         self.assertEqual(area.children(self.SV, "Leaf_a"), {})
 
     def test_the_afu_area_is_the_puc_plus_n_scpus(self):
-        import area
+        from sweeplib import area
         puc = {"luts": 100, "arith": 10, "dsp": 0, "ff": 50, "m10k": 40}
         scpu = {"luts": 7, "arith": 3, "dsp": 9, "ff": 5, "m10k": 0}
         a = area.afu_area(puc, scpu, 16)
@@ -351,7 +350,7 @@ class Pareto(unittest.TestCase):
                      "end to end (sbt, Verilator, a host build): set COLLIDE_SWEEP_SMOKE=1, as tools/test does")
 class SmokeSweep(unittest.TestCase):
     def test_one_command_generates_builds_runs_and_writes_the_csv_tables_and_machine_note(self):
-        import cli
+        from sweeplib import cli
         with tempfile.TemporaryDirectory() as d:
             self.assertEqual(cli.main(["run", "smoke", "--out", d]), 0)
             rows = sweep.read_csv(Path(d) / "smoke.csv")

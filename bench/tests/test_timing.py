@@ -10,10 +10,9 @@ import unittest
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 sys.path.insert(0, str(ROOT / "bench" / "area"))
 
-import area  # noqa: E402
+from sweeplib import area  # noqa: E402
 import afu_timing  # noqa: E402
 
 # Two sta reports as Yosys 0.23 writes them: a register-to-register path, then one ending at a

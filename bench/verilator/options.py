@@ -27,8 +27,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-import machine  # noqa: E402
+from sweeplib import machine  # noqa: E402
 
 # id -> (what it is, CMake cache settings). O1 with one thread is the project's default.
 SETS = {

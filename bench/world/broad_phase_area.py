@@ -19,8 +19,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-import area  # noqa: E402
+from sweeplib import area  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from lanes_area import broad_phase  # noqa: E402  (a generated world-mode folder's Verilog and BroadPhase)
 

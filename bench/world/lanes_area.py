@@ -21,8 +21,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-import area  # noqa: E402
+from sweeplib import area  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from lanes import read_area  # noqa: E402  (the area CSV, as the lanes report reads it)
 

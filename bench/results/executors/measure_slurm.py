@@ -14,15 +14,15 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[3]
-sys.path[:0] = [str(ROOT / "bench" / "sweeplib"), str(ROOT / "bench" / "tests")]
+sys.path.insert(0, str(ROOT / "bench" / "tests"))
 
-import build  # noqa: E402
-import local  # noqa: E402
-import slurm  # noqa: E402
+from sweeplib import build  # noqa: E402
+from sweeplib import local  # noqa: E402
+from sweeplib import slurm  # noqa: E402
 import slurm_cluster  # noqa: E402
-import sweep  # noqa: E402
-from sweeps import SWEEPS  # noqa: E402
-from tasks import Records  # noqa: E402
+from sweeplib import sweep  # noqa: E402
+from sweeplib.sweeps import SWEEPS  # noqa: E402
+from sweeplib.tasks import Records  # noqa: E402
 
 
 def once(executor, work: Path, poll: float) -> dict:

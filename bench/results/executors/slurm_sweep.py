@@ -17,10 +17,10 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[3]
-sys.path[:0] = [str(ROOT / "bench" / "sweeplib"), str(ROOT / "bench" / "tests")]
+sys.path.insert(0, str(ROOT / "bench" / "tests"))
 
 import slurm_cluster  # noqa: E402
-from sweeps import SWEEPS  # noqa: E402
+from sweeplib.sweeps import SWEEPS  # noqa: E402
 
 
 def cold(name: str, configs: list):
