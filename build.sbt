@@ -9,13 +9,13 @@ val chiselVersion = "6.7.0"
 // Seconds each heavy spec took in a clean-clone run (2 cores, two JVMs): the weights of the
 // two test groups below (bench/results/suite).
 val suiteSeconds = Map(
-  "BroadPhaseSpec" -> 280, "AfuWorldSpec" -> 250, "PucSpec" -> 230, "AfuSpec" -> 140,
-  "ScpuSpec" -> 90, "FpAddSpec" -> 74, "SphereKeysSpec" -> 73, "ChunkMatcherSpec" -> 70,
-  "FpRsqrtSpec" -> 63, "GeneratedFreshSpec" -> 50, "FpRecipSpec" -> 47, "ContactPackerFormalSpec" -> 46,
-  "FpSqrtSpec" -> 37, "BucketSortSpec" -> 35, "FpMulSpec" -> 29, "ReadEngineFormalSpec" -> 25,
-  "ContactCollectorSpec" -> 25, "WorldPairLinesSpec" -> 20, "ChunkMatcherFormalSpec" -> 18,
-  "BroadPhaseModelSpec" -> 14, "NewtonRaphsonCoreSpec" -> 13, "NewtonRaphsonErrorSpec" -> 13,
-  "FpConvertSpec" -> 13, "TagPoolFormalSpec" -> 11, "BucketSortFormalSpec" -> 16)
+  "BroadPhaseSpec" -> 284, "AfuWorldSpec" -> 275, "PucSpec" -> 200, "AfuSpec" -> 88,
+  "ScpuSpec" -> 131, "FpAddSpec" -> 67, "SphereKeysSpec" -> 77, "ChunkMatcherSpec" -> 58,
+  "FpRsqrtSpec" -> 53, "GeneratedFreshSpec" -> 47, "FpRecipSpec" -> 31, "ContactPackerFormalSpec" -> 43,
+  "FpSqrtSpec" -> 37, "BucketSortSpec" -> 24, "FpMulSpec" -> 40, "ReadEngineFormalSpec" -> 23,
+  "ContactCollectorSpec" -> 10, "WorldPairLinesSpec" -> 16, "ChunkMatcherFormalSpec" -> 18,
+  "BroadPhaseModelSpec" -> 14, "NewtonRaphsonCoreSpec" -> 14, "NewtonRaphsonErrorSpec" -> 7,
+  "FpConvertSpec" -> 12, "TagPoolFormalSpec" -> 11, "BucketSortFormalSpec" -> 14)
 
 // sbt's default allows one forked test group at a time; the two groups below run together.
 Global / concurrentRestrictions := Seq(
@@ -67,8 +67,8 @@ lazy val root = (project in file("."))
     Test / parallelExecution := true,
     Test / testForkedParallel := false,
     Test / javaOptions ++= Seq("-Xss8m", "-Xmx6g"),
-    // Tests run in a forked JVM: forward the replay knobs (collide.testutil.Seeds).
-    Test / javaOptions ++= Seq("seed", "scale").flatMap(k => sys.props.get(k).map(v => s"-D$k=$v")),
+    // Tests run in a forked JVM: forward the replay knobs (collide.testutil.Seeds) and -Dvcd (AfuSpec).
+    Test / javaOptions ++= Seq("seed", "scale", "vcd").flatMap(k => sys.props.get(k).map(v => s"-D$k=$v")),
     run / fork := true,
     // `sbt "run ..."` is the generator CLI
     Compile / run / mainClass := Some("collide.Generate"),
