@@ -62,7 +62,7 @@ class BucketSortFormal(items: Int, bucketsLog2: Int, wordLog2: Int, ports: Int, 
   private object S extends ChiselEnum { val warm, clear, clearing, count, prefix, summing, scatter, settle, read, verify, done = Value }
   private val state = RegInit(S.warm)
   private val warmCycles = BucketSort.prefixStages(1 << math.min(wordLog2, bucketsLog2)) + 1
-  private val warm = RegInit(0.U(log2Ceil(warmCycles + 1).W))
+  private val sinceReset = FormalEnv.cycles(log2Ceil(warmCycles + 1))
   private val next = Reg(Vec(ports, UInt(nW.W)))
   private val settle = RegInit(0.U(2.W))
   private def streaming = state === S.count || state === S.scatter
@@ -80,7 +80,7 @@ class BucketSortFormal(items: Int, bucketsLog2: Int, wordLog2: Int, ports: Int, 
   }
 
   switch(state) {
-    is(S.warm) { warm := warm + 1.U; when(warm === (warmCycles - 1).U) { state := S.clear } }
+    is(S.warm) { when(sinceReset === (warmCycles - 1).U) { state := S.clear } }
     is(S.clear) { dut.io.clear := true.B; state := S.clearing }
     is(S.clearing) { when(!dut.io.busy) { state := S.count; restart() } }
     is(S.count) { when(allSent) { state := S.prefix } }
