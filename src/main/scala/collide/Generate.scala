@@ -153,12 +153,15 @@ object Generate {
       try Right(c) catch { case e: IllegalArgumentException => Left(s"$flag: ${e.getMessage.stripPrefix("requirement failed: ")}") }
     def opt[A](flag: String, v: Option[A])(f: (AfuConfig, A) => Either[String, AfuConfig])(c: AfuConfig) =
       v.fold[Either[String, AfuConfig]](Right(c))(a => f(c, a).left.map(m => if (m.startsWith(flag)) m else s"$flag: $m"))
-    /** A flag of the broad phase's: refused unless world mode is built. */
-    def world[A](flag: String, v: Option[A])(f: (BroadPhaseParams, A) => BroadPhaseParams)(c: AfuConfig) =
+    /** A flag of world mode's: refused unless world mode is built. */
+    def worldMode[A](flag: String, v: Option[A])(f: (WorldConfig, A) => WorldConfig)(c: AfuConfig) =
       opt(flag, v)((c, a) => c.world match {
-        case Some(bp) => step(flag, c.copy(world = Some(f(bp, a))))
+        case Some(w) => step(flag, c.copy(world = Some(f(w, a))))
         case None => Left(s"$flag: world mode is not built (add --world true or --preset world)")
       })(c)
+    /** A flag of the broad phase's. */
+    def world[A](flag: String, v: Option[A])(f: (BroadPhaseParams, A) => BroadPhaseParams)(c: AfuConfig) =
+      worldMode(flag, v)((w, a) => w.copy(broadPhase = f(w.broadPhase, a)))(c)
     // Each flag in turn, in this order (later ones see the earlier ones' choices); the first
     // refusal stops the chain.
     val steps: Seq[AfuConfig => Either[String, AfuConfig]] = Seq(
@@ -177,9 +180,7 @@ object Generate {
       opt("--ram-ports", o.ramPorts)((c, v) => SphereRamPorts.parse(v).flatMap(r => step("--ram-ports", c.copy(ramPorts = r)))),
       opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v))),
       opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r))))),
-      opt("--world", o.world)((c, v) => step("--world",
-        c.copy(world = if (v) Some(c.world.getOrElse(BroadPhaseParams.default)) else None, runQueue = v && c.runQueue,
-          startAhead = v && c.startAhead, worldLineQueue = if (v) c.worldLineQueue else 2))),
+      opt("--world", o.world)((c, v) => step("--world", c.copy(world = if (v) Some(c.world.getOrElse(WorldConfig())) else None))),
       world("--world-lanes", o.worldLanes)((bp, v) => bp.copy(lanes = v,
         sortPorts = BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max)), // ports follow the lanes down
       world("--world-sort-ports", o.worldSortPorts)((bp, v) => bp.copy(sortPorts = v)),
@@ -196,12 +197,12 @@ object Generate {
       world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v)),
       world("--world-box-buckets", o.worldBoxBuckets)((bp, v) => bp.copy(boxBuckets = v)),
       opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i)))),
-      opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v, startAhead = v && c.startAhead))),
+      worldMode("--run-queue", o.runQueue)((w, v) => w.copy(runQueue = v, startAhead = v && w.startAhead)),
       world("--world-drain-behind", o.worldDrainBehind)((bp, v) => bp.copy(drainBehind = v)),
       world("--world-look-ahead", o.worldLookAhead)((bp, v) => bp.copy(lookAhead = v)),
       world("--world-scan-pairs", o.worldScanPairs)((bp, v) => bp.copy(scanPairs = v)),
-      opt("--world-line-queue", o.worldLineQueue)((c, v) => step("--world-line-queue", c.copy(worldLineQueue = v))),
-      opt("--start-ahead", o.startAhead)((c, v) => step("--start-ahead", c.copy(startAhead = v))),
+      worldMode("--world-line-queue", o.worldLineQueue)((w, v) => w.copy(lineQueue = v)),
+      worldMode("--start-ahead", o.startAhead)((w, v) => w.copy(startAhead = v)),
       world("--world-clear-behind", o.worldClearBehind)((bp, v) => bp.copy(clearBehind = v)),
       world("--world-near-filter", o.worldNearFilter)((bp, v) => bp.copy(nearFilter = v)),
       opt("--device", o.device)((c, v) => Device.byName(v).left.map(e => s"--device: $e").map(d => c.copy(device = d))),

@@ -22,20 +22,9 @@ import collide.scpu.{ScpuConfig, ScpuImpl}
   *                             (AfuConfig.bestLayout: derived where the host can rebuild contacts
   *                             exactly, else full; masked where that fits more a line, except
   *                             with world mode, whose records name their spheres)
-  * @param world                build world mode (MODE bit 1): an on-chip broad phase with these
-  *                             parameters finds the pairs; None = pair lists only
-  * @param runQueue             a run queue (world mode only): a start while a run is on queues one
-  *                             more run, and a queued world run's table loads into a second
-  *                             on-chip table while the current run computes (docs/afu.md, "The
-  *                             run queue"); costs a second copy of every sphere-table RAM
-  * @param worldLineQueue       world mode: pair lines of candidates queued between the broad
-  *                             phase and the dispatcher (2..4096): deeper lets the lanes run on
-  *                             while a burst of contacts holds the SCPUs (docs/afu.md, "Starting
-  *                             ahead")
-  * @param startAhead           with the run queue: a queued world run's broad phase starts as soon
-  *                             as the current run's is over and the queued table is in, while the
-  *                             current run's last pairs are still computed and written; its
-  *                             candidates wait for its own run (docs/afu.md, "Starting ahead")
+  * @param world                build world mode (MODE bit 1): an on-chip broad phase finds the
+  *                             pairs (WorldConfig: the broad phase, the run queue, the line queue,
+  *                             starting ahead); None = pair lists only
   * @param device               the FPGA part it must fit (Device; the generator refuses a
   *                             configuration whose M20K blocks or DSP tiles exceed it unless
   *                             --allow-overfit)
@@ -54,11 +43,8 @@ final case class AfuConfig(
     ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
     denseByDefault: Boolean = false,
     records: Option[RecordLayout] = None,
-    world: Option[collide.world.BroadPhaseParams] = None,
+    world: Option[WorldConfig] = None,
     scpuImpl: ScpuImpl = ScpuImpl.Rtl,
-    runQueue: Boolean = false,
-    worldLineQueue: Int = 2,
-    startAhead: Boolean = false,
     device: Device = Device.stratixVA7) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
@@ -83,10 +69,10 @@ final case class AfuConfig(
       s"AfuConfig $name: world mode holds at most ${1 << RecordTag.WORLD_INDEX_BITS} spheres (a record's pair field names i and j), got $maxSpheres")
     require(records.forall(!_.masked), s"AfuConfig $name: world mode needs an indexed record layout, not ${records.get.name}")
   }
-  require(!runQueue || world.isDefined, s"AfuConfig $name: a run queue needs world mode (it loads a queued world run's table)")
-  require(worldLineQueue >= 2 && worldLineQueue <= 4096, s"AfuConfig $name: worldLineQueue must be 2..4096 pair lines, got $worldLineQueue")
-  require(worldLineQueue == 2 || world.isDefined, s"AfuConfig $name: worldLineQueue needs world mode (it queues the broad phase's candidates)")
-  require(!startAhead || runQueue, s"AfuConfig $name: startAhead needs the run queue (it starts the queued world run's broad phase)")
+  /** The broad phase's parameters where world mode is built. */
+  def broadPhase: Option[collide.world.BroadPhaseParams] = world.map(_.broadPhase)
+  /** A run queue (world mode only: WorldConfig.runQueue). */
+  def runQueue: Boolean = world.exists(_.runQueue)
   /** The record layout in effect (bestLayout unless asked for). */
   val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu, world.isDefined))
 
@@ -100,14 +86,7 @@ final case class AfuConfig(
   def derivedName: String =
     s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" + (if (runQueue) "_q" else "") +
       (if (recordLayout != AfuConfig.bestLayout(scpu, world.isDefined)) s"_${recordLayout.name}" else "") +
-      (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "") + (if (bp.sortPorts > 1) s"p${bp.sortPorts}" else "") +
-        (if (bp.wordLog2 != collide.world.BroadPhaseParams.default.wordLog2) s"w${bp.wordLog2}" else "") +
-        (if (bp.bucketsPerSphereLog2 != collide.world.BroadPhaseParams.default.bucketsPerSphereLog2) s"s${bp.bucketsPerSphereLog2}" else "") +
-        (if (bp.cellSteps != collide.world.BroadPhaseParams.default.cellSteps) s"e${bp.cellSteps}" else "") +
-        (if (bp.chunk != collide.world.BroadPhaseParams.default.chunk) s"k${bp.chunk}" else "") +
-        (if (bp.coarseChunks) "x" else "") + (if (bp.claims) "u" else "") + (if (bp.hitQueue > 0) s"h${bp.hitQueue}" else "") +
-        (if (bp.boxBuckets) "bx" else "") + (if (bp.drainBehind) "d" else "") + (if (bp.lookAhead != 3) s"a${bp.lookAhead}" else "") +
-        (if (bp.scanPairs) "sp" else "") + (if (bp.clearBehind) "cb" else "") + (if (!bp.nearFilter) "wf" else "") + (if (worldLineQueue != 2) s"l$worldLineQueue" else "") + (if (startAhead) "z" else "")).getOrElse("") +
+      (if (denseByDefault) "_dense" else "") + world.map(_.idSuffix).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -116,7 +95,7 @@ final case class AfuConfig(
     scpus = scpus, linkWidth = linkWidth, scpuTagBits = scpu.tagBits, scpuLatency = scpu.latency,
     maxSpheres = maxSpheres, maxReads = maxReadsOutstanding, maxWrites = maxWritesOutstanding,
     tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, records = recordLayout,
-    world = world.map(bp => PucWorld(bp, scpu.params, worldLineQueue, startAhead)), tables = if (runQueue) 2 else 1, name = "_" + id)
+    world = world.map(w => PucWorld(w.broadPhase, scpu.params, w.lineQueue, w.startAhead)), tables = if (runQueue) 2 else 1, name = "_" + id)
 
   /** Pairs per cycle the dispatcher can reach (a group never spans two pair lines). */
   def peakPairsPerCycle: Double = {
@@ -130,8 +109,8 @@ final case class AfuConfig(
     s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
       s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
-      world.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, ${bp.sortPorts} sort port${if (bp.sortPorts > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits, ${puc.broadPhaseM20k} M20K blocks by estimate; the sphere RAM's ${puc.ramM20k})").getOrElse("") +
-      (if (runQueue) ", a run queue (two sphere tables)" + (if (startAhead) ", queued broad phases started ahead" else "") else "") +
+      broadPhase.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, ${bp.sortPorts} sort port${if (bp.sortPorts > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits, ${puc.broadPhaseM20k} M20K blocks by estimate; the sphere RAM's ${puc.ramM20k})").getOrElse("") +
+      (if (runQueue) ", a run queue (two sphere tables)" + (if (world.exists(_.startAhead)) ", queued broad phases started ahead" else "") else "") +
       (if (scpuImpl == ScpuImpl.Model) ", SCPUs simulated by the C++ model (not synthesizable)" else "")
 }
 
@@ -171,9 +150,10 @@ object AfuConfig {
     * Stratix 10 GX 2800: the area proxy puts it at 125 % of an Arria 10 GX 1150's ALMs by LUT
     * shape (docs/timing.md); `world-fit` fits the paper's part. */
   val world: AfuConfig   = big.copy(name = "world",
-    world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
-      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6, scanPairs = true)),
-    runQueue = true, device = Device.stratix10GX2800)
+    world = Some(WorldConfig(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
+      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6, scanPairs = true),
+      runQueue = true)),
+    device = Device.stratix10GX2800)
 
   /** World mode at twice the lanes: the `world` preset with 32 candidate lanes and its sort's
     * passes 16 spheres a cycle, 256 candidate lines queued for the dispatcher, the sort's counters
@@ -182,8 +162,8 @@ object AfuConfig {
     * broad-phase logic and three times its sort RAM, so a study of what the target costs, not a
     * design fitted to one FPGA: on the Arria 10 GX 1150 it is refused without --allow-overfit. */
   val world32: AfuConfig = world.copy(name = "world32",
-    world = world.world.map(_.copy(lanes = 32, sortPorts = 16, clearBehind = true)),
-    worldLineQueue = 256, startAhead = true, device = Device.arria10GX1150)
+    world = world.world.map(w => w.copy(broadPhase = w.broadPhase.copy(lanes = 32, sortPorts = 16, clearBehind = true),
+      lineQueue = 256, startAhead = true)), device = Device.arria10GX1150)
 
   /** World mode on the paper's part: the `world` preset cut to fit the Stratix V GX A7
     * (5SGXEA7) of HARP v1, whose 234,720 ALMs hold neither the `world` preset's 16-lane broad
@@ -191,7 +171,7 @@ object AfuConfig {
     * logic is mostly per lane) and four SCPUs (four pairs a cycle is more than eight lanes find:
     * bench/results/world-fit measures both, and the area proxy's ALMs against the part). */
   val worldFit: AfuConfig = world.copy(name = "world-fit", scpus = 4,
-    world = world.world.map(_.copy(lanes = 8)), device = Device.stratixVA7)
+    world = world.world.map(w => w.copy(broadPhase = w.broadPhase.copy(lanes = 8))), device = Device.stratixVA7)
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */

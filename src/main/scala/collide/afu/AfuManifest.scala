@@ -30,20 +30,21 @@ object AfuManifest {
         "writeQueueLines" -> p.writeQueueLines,
         "world" -> cfg.world.isDefined,
         "runQueue" -> cfg.runQueue, "sphereTables" -> p.tables,
-        "broadPhase" -> cfg.world.map { bp =>
+        "broadPhase" -> cfg.world.map { w =>
+          val bp = w.broadPhase
           ujson.Obj("largeMax" -> bp.largeMax, "cellBits" -> bp.cellBits, "bucketsLog2" -> bp.bucketsLog2,
             "margin" -> s"${bp.marginNum}/${bp.marginDen}", "cellOverError" -> bp.cellOverError,
             "filterFracBits" -> bp.filterFracBits, "chunk" -> bp.chunk, "wordLog2" -> bp.wordLog2,
             "lanes" -> bp.lanes, "sortPorts" -> bp.sortPorts, "bucketsPerSphereLog2" -> bp.bucketsPerSphereLog2,
             "cellSteps" -> bp.cellSteps, "coarseChunks" -> bp.coarseChunks, "team" -> bp.teamSize, "claims" -> bp.claims, "hitQueue" -> bp.hitQueue, "boxBuckets" -> bp.boxBuckets,
             "drainBehind" -> bp.drainBehind, "lookAhead" -> bp.lookAhead, "scanPairs" -> bp.scanPairs,
-            "clearBehind" -> bp.clearBehind, "nearFilter" -> bp.nearFilter, "lineQueue" -> cfg.worldLineQueue, "startAhead" -> cfg.startAhead,
+            "clearBehind" -> bp.clearBehind, "nearFilter" -> bp.nearFilter, "lineQueue" -> w.lineQueue, "startAhead" -> w.startAhead,
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "banks" -> p.banks, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,
           "sphereTableM20k" -> p.ramM20k.toDouble,
           "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble,
-          "broadPhaseBits" -> ujson.Num(cfg.world.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)),
+          "broadPhaseBits" -> ujson.Num(cfg.broadPhase.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)),
           "broadPhaseM20k" -> p.broadPhaseM20k.toDouble)),
       "device" -> ujson.Obj("name" -> cfg.device.name, "part" -> cfg.device.part, "alms" -> cfg.device.alms,
         "m20k" -> cfg.device.m20k, "dspBlocks" -> cfg.device.dspBlocks, "source" -> cfg.device.source,

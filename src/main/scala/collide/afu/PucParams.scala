@@ -39,7 +39,7 @@ object SphereRamPorts {
 /** World mode's part of the PUC: the broad phase's parameters, the compute format it reads the
   * sphere table in (world mode needs the link format to be the compute format), the pair lines
   * queued for the dispatcher, and whether a queued world run's broad phase starts ahead
-  * (AfuConfig.worldLineQueue, AfuConfig.startAhead). */
+  * (WorldConfig.lineQueue, WorldConfig.startAhead). */
 final case class PucWorld(bp: collide.world.BroadPhaseParams, fp: collide.fp.FpParams, lineQueue: Int = 2,
                           startAhead: Boolean = false)
 

@@ -46,7 +46,7 @@ class AfuResourcesSpec extends AnyFlatSpec {
 
   it should "fit the world-fit preset to the paper's part, where the world preset is refused" in {
     val wf = AfuConfig.worldFit
-    assert(wf.device == Device.stratixVA7 && wf.world.get.lanes == 8 && wf.scpus == 4)
+    assert(wf.device == Device.stratixVA7 && wf.broadPhase.get.lanes == 8 && wf.scpus == 4)
     // Its tables (4 SCPU copies and the 8 lanes' 4, twice for the run queue) and sort RAMs.
     val r = AfuResources.of(wf, Some(40))
     assert(r.m20k == 772 && r.overfit(Device.stratixVA7).isEmpty, r)

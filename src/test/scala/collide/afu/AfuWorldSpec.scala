@@ -43,7 +43,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
                capacity: Option[Long] = None): (Seq[String], Status) = {
     val lay = cfg.layout
     val want = expected(cfg, world)
-    val model = new BroadPhaseModel(cfg.scpu, cfg.world.get).run(world)
+    val model = new BroadPhaseModel(cfg.scpu, cfg.broadPhase.get).run(world)
     val cap = capacity.getOrElse(want.size.toLong + 3)
     val w = World(lay, world.map(s => Seq(s.x, s.y, s.z, s.r)), IndexedSeq.empty, dense = false, capacity = Some(cap))
     val mem = new HostMemoryModel(dut.io, dut.clock, beh, seed, cfg.maxReadsOutstanding, cfg.maxWritesOutstanding)
@@ -57,7 +57,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
   def check(cfg: AfuConfig, world: IndexedSeq[WorldSphere], cap: Long, r: RunResult): (Seq[String], Status) = {
     val lay = cfg.layout
     val want = expected(cfg, world)
-    val model = new BroadPhaseModel(cfg.scpu, cfg.world.get).run(world)
+    val model = new BroadPhaseModel(cfg.scpu, cfg.broadPhase.get).run(world)
     val errs = scala.collection.mutable.ArrayBuffer[String]()
     val st = r.status.getOrElse(return (Seq(s"no status line in ${r.cycles} cycles"), Status(IndexedSeq.fill(16)(0L))))
     val written = math.min(want.size.toLong, cap)
@@ -178,7 +178,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  private val small = AfuConfig.world.copy(scpus = 2, maxSpheres = 256, runQueue = false)
+  private val small = AfuConfig.world.copy(scpus = 2, maxSpheres = 256, world = AfuConfig.world.world.map(_.copy(runQueue = false)))
 
   it should "find every contact of every hard case exactly once, bit for bit the all-pairs golden model (two fp32 SCPUs, derived records)" in {
     endToEnd(small, "fp32")
@@ -189,15 +189,15 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
   // The banked AFU also has the run queue, so the queue's cases below share its build; it starts
   // a queued world's broad phase ahead (its pairs held until its run), queues eight candidate
   // lines, and clears the sort's counters behind each scatter (docs/afu.md, "Starting ahead").
-  private val banked = small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4)), runQueue = true,
-    world = small.world.map(_.copy(lanes = 4, sortPorts = 4, clearBehind = true)), startAhead = true, worldLineQueue = 8)
+  private val banked = small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4)),
+    world = small.world.map(w => WorldConfig(w.broadPhase.copy(lanes = 4, sortPorts = 4, clearBehind = true), runQueue = true, lineQueue = 8, startAhead = true)))
 
   it should "find the same contacts, and the pair mode's, with the sphere table in four banks (four fp32 SCPUs, eight reads a cycle), alone and through the run queue" in {
     endToEnd(banked, "fp32-banked")
   }
 
   it should "find the same contacts with three broad-phase lanes (four fp32 SCPUs; one sphere copy shared by two lanes, one for the third)" in {
-    endToEnd(small.copy(scpus = 4, world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 3))), "fp32-lanes")
+    endToEnd(small.copy(scpus = 4, world = Some(WorldConfig(collide.world.BroadPhaseParams.default.copy(lanes = 3)))), "fp32-lanes")
   }
 
   it should "stop at the contact buffer's capacity, refuse dense world runs, and hold maxSpheres spheres" in {
@@ -258,7 +258,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
       def broad(s: Status) = s.words(StatusLine.CYCLES_BROAD / 4)
       println(s"[AfuWorldSpec] broad-phase cycles queued ${st.map(broad).mkString(" ")}, late ${late.map(broad).mkString(" ")}")
       def total(s: Status) = s.words(StatusLine.CYCLES_TOTAL / 4)
-      if (!queued.startAhead)
+      if (!queued.world.exists(_.startAhead))
         for (((q, l), i) <- st.zip(late).zipWithIndex)
           assert(broad(q) <= broad(l) + 8, s"run $i's broad phase took ${broad(q)} cycles queued, ${broad(l)} started late")
       else {

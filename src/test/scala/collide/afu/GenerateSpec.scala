@@ -21,7 +21,7 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--format", "e6m12").toOption.get.scpu.format == collide.fp.FloatFormat(6, 12))
     assert(cfg("--scpu", "fp32:rm=rtz").toOption.get.scpu.rounding == collide.fp.RoundingMode.RTZ)
     val w = cfg("--scpus", "4", "--world", "true").toOption.get
-    assert(w.world.contains(collide.world.BroadPhaseParams.default) && w.recordLayout == RecordLayout.Derived && w.id.endsWith("_world"),
+    assert(w.world.contains(WorldConfig()) && w.recordLayout == RecordLayout.Derived && w.id.endsWith("_world"),
       s"world mode on: ${w.id}, ${w.recordLayout.name} records (a world record names its spheres: indexed)")
     assert(cfg("--preset", "world").contains(AfuConfig.world))
     assert(cfg("--preset", "world", "--world", "false").toOption.get.world.isEmpty)
@@ -42,33 +42,33 @@ class GenerateSpec extends AnyFlatSpec {
     assert(AfuConfig.world32.puc.broadPhaseM20k == 8 * (34 * 8 + 32 * 1))
     // Four sort ports: two sorts of half the table (12-bit counters, 2048 entries).
     val p4 = cfg("--preset", "world", "--world-sort-ports", "4").toOption.get
-    assert(p4.id.endsWith("_world16p4w5e2k32xuh8bxda6sp") && p4.world.get.ramBits(4096) == 2 * ((16 + 1) * 8192L * 12 + 16 * 2048L * 13), p4.id)
+    assert(p4.id.endsWith("_world16p4w5e2k32xuh8bxda6sp") && p4.broadPhase.get.ramBits(4096) == 2 * ((16 + 1) * 8192L * 12 + 16 * 2048L * 13), p4.id)
     assert(AfuConfig.world.puc.ramCopies == 16 + 8, "sixteen SCPU copies and the broad phase's eight")
     // Lanes: a sort RAM each, a sphere copy per two; a name of their own.
     val l5 = cfg("--preset", "world", "--world-lanes", "5").toOption.get
-    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p4w5e2k32xuh8bxda6sp") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
-    assert(l5.world.get.ramBits(4096) == 2 * ((5 + 1) * 8192L * 12 + 5 * 2048L * 13))
+    assert(l5.broadPhase.get.lanes == 5 && l5.id.endsWith("_world5p4w5e2k32xuh8bxda6sp") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
+    assert(l5.broadPhase.get.ramBits(4096) == 2 * ((5 + 1) * 8192L * 12 + 5 * 2048L * 13))
     // Fewer lanes than the ports: the ports follow down to the most a configuration allows.
     val l3 = cfg("--preset", "world", "--world-lanes", "3").toOption.get
-    assert(l3.world.get.sortPorts == 2 && l3.id.endsWith("_world3p2w5e2k32xuh8bxda6sp") && l3.world.get.ramBits(4096) == 3 * 159744L + 8192 * 13, l3.id)
+    assert(l3.broadPhase.get.sortPorts == 2 && l3.id.endsWith("_world3p2w5e2k32xuh8bxda6sp") && l3.broadPhase.get.ramBits(4096) == 3 * 159744L + 8192 * 13, l3.id)
     // One bucket a sphere: half the counters (4096 of 12 bits per group and lane) and a name of its own.
     val b1 = cfg("--preset", "world", "--world-buckets-per-sphere", "1").toOption.get
-    assert(b1.id.endsWith("_world16p8w5s0e2k32xuh8bxda6sp") && b1.world.get.ramBits(4096) == 4 * ((16 + 1) * 4096L * 11 + 16 * 1024L * 13), b1.id)
+    assert(b1.id.endsWith("_world16p8w5s0e2k32xuh8bxda6sp") && b1.broadPhase.get.ramBits(4096) == 4 * ((16 + 1) * 4096L * 11 + 16 * 1024L * 13), b1.id)
     // The preset's grid: chunks of 32, coarse chunks, edges of 1.5 * 2^k too.
-    val pw = AfuConfig.world.world.get
+    val pw = AfuConfig.world.broadPhase.get
     assert(pw.cellSteps == 2 && pw.chunk == 32 && pw.coarseChunks && pw.claims && pw.teamSize == 1, s"the preset's grid: $pw")
     // Edges of 2^k alone: a name of its own, the same RAM.
     val e1 = cfg("--preset", "world", "--world-cell-steps", "1").toOption.get
-    assert(e1.world.get.cellSteps == 1 && e1.id.endsWith("_world16p8w5k32xuh8bxda6sp") && e1.world.get.ramBits(4096) == pw.ramBits(4096), e1.id)
+    assert(e1.broadPhase.get.cellSteps == 1 && e1.id.endsWith("_world16p8w5k32xuh8bxda6sp") && e1.broadPhase.get.ramBits(4096) == pw.ramBits(4096), e1.id)
     // The grid before coarse chunks: chunks of 16 cells, edges 2^k; the same RAM.
     val x = cfg("--preset", "world", "--world-chunk", "16", "--world-coarse-chunks", "false", "--world-cell-steps", "1").toOption.get
-    assert(!x.world.get.coarseChunks && x.world.get.chunk == 16 && x.id.endsWith("_world16p8w5uh8bxda6") && x.world.get.ramBits(4096) == pw.ramBits(4096), x.id)
+    assert(!x.broadPhase.get.coarseChunks && x.broadPhase.get.chunk == 16 && x.id.endsWith("_world16p8w5uh8bxda6") && x.broadPhase.get.ramBits(4096) == pw.ramBits(4096), x.id)
     // Without claims, teams: the largest power of two up to 4 that divides the lanes; a name of its own.
     val t6 = cfg("--preset", "world", "--world-lanes", "6", "--world-claims", "false").toOption.get
-    assert(t6.world.get.teamSize == 2 && t6.id.endsWith("_world6p4w5e2k32xh8bxda6sp"), t6.id)
-    assert(cfg("--preset", "world", "--world-claims", "false").toOption.get.world.get.teamSize == 4)
+    assert(t6.broadPhase.get.teamSize == 2 && t6.id.endsWith("_world6p4w5e2k32xh8bxda6sp"), t6.id)
+    assert(cfg("--preset", "world", "--world-claims", "false").toOption.get.broadPhase.get.teamSize == 4)
     val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
-    assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5w5e2k32xuh8bxda6sp") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
+    assert(p1.broadPhase.get.sortPorts == 1 && p1.id.endsWith("_world5w5e2k32xuh8bxda6sp") && p1.broadPhase.get.ramBits(4096) == 5 * 159744L, p1.id)
     assert(cfg("--world", "true", "--world-lanes", "5", "--world-sort-ports", "2").toOption.get.id.endsWith("_world5p2"),
       "eight counters a word (the default): no word size in the name")
     assert(cfg("--preset", "world", "--world-lanes", "16").toOption.get.isPreset)
@@ -77,7 +77,7 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--preset", "world", "--world-hit-queue", "0").toOption.get.id.endsWith("_world16p8w5e2k32xubxda6sp"))
     // 16 counters a word: the same RAM bits, a name of its own.
     val w4 = cfg("--preset", "world", "--world-word-log2", "4").toOption.get
-    assert(w4.id.endsWith("_world16p8w4e2k32xuh8bxda6sp") && w4.world.get.ramBits(4096) == pw.ramBits(4096), w4.id)
+    assert(w4.id.endsWith("_world16p8w4e2k32xuh8bxda6sp") && w4.broadPhase.get.ramBits(4096) == pw.ramBits(4096), w4.id)
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("hitQueue").num == 8)
     // Draining behind and six visits looked up ahead in the preset; without, names of their own.
     assert(pw.drainBehind && pw.lookAhead == 6, s"the preset's drain and look-ahead: $pw")
@@ -90,11 +90,11 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--preset", "world", "--world-look-ahead", "2").isLeft, "a look-ahead below three is refused")
     // 16 sort ports: eight sorts of an eighth of the table, eight tables of 10-bit counters a lane.
     val p16 = cfg("--preset", "world", "--world-sort-ports", "16").toOption.get
-    assert(p16.id.endsWith("_world16p16w5e2k32xuh8bxda6sp") && p16.world.get.sortGroups == 8 &&
-      p16.world.get.ramBits(4096) == 8 * ((16 + 1) * 8192L * 10 + 16 * 512L * 13), p16.id)
+    assert(p16.id.endsWith("_world16p16w5e2k32xuh8bxda6sp") && p16.broadPhase.get.sortGroups == 8 &&
+      p16.broadPhase.get.ramBits(4096) == 8 * ((16 + 1) * 8192L * 10 + 16 * 512L * 13), p16.id)
     // Box buckets in the preset; a hashed table is a name of its own with the same RAM bits.
     val hb = cfg("--preset", "world", "--world-box-buckets", "false").toOption.get
-    assert(pw.boxBuckets && hb.id.endsWith("_world16p8w5e2k32xuh8da6sp") && hb.world.get.ramBits(4096) == pw.ramBits(4096), hb.id)
+    assert(pw.boxBuckets && hb.id.endsWith("_world16p8w5e2k32xuh8da6sp") && hb.broadPhase.get.ramBits(4096) == pw.ramBits(4096), hb.id)
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("boxBuckets").bool)
     assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_worldw5e2k32xuh8bxda6sp"),
       "one lane: no lane count in the name, and the sort's ports follow the lanes down to one")
@@ -111,7 +111,7 @@ class GenerateSpec extends AnyFlatSpec {
     // Starting queued broad phases ahead and a deeper line queue: names of their own, in the
     // manifest; 32 lanes (past a line's 16 candidates) are built.
     val sa = cfg("--preset", "world", "--world-lanes", "32", "--world-sort-ports", "16", "--world-line-queue", "64", "--start-ahead", "true").toOption.get
-    assert(sa.startAhead && sa.worldLineQueue == 64 && sa.world.get.lanes == 32 && sa.id.endsWith("_world32p16w5e2k32xuh8bxda6spl64z"), sa.id)
+    assert(sa.world.get.startAhead && sa.world.get.lineQueue == 64 && sa.broadPhase.get.lanes == 32 && sa.id.endsWith("_world32p16w5e2k32xuh8bxda6spl64z"), sa.id)
     assert(sa.puc.world.get.startAhead && sa.puc.world.get.lineQueue == 64)
     val ms = AfuManifest.json(sa, "")("afu")("broadPhase")
     assert(ms("startAhead").bool && ms("lineQueue").num == 64 && ms("lanes").num == 32)
@@ -123,12 +123,12 @@ class GenerateSpec extends AnyFlatSpec {
     // Counters cleared behind the scatter: one table of counters more a sort, a name of its own.
     val cb = cfg("--preset", "world", "--world-clear-behind", "true").toOption.get
     assert(cb.id.endsWith("_world16p8w5e2k32xuh8bxda6spcb") && AfuManifest.json(cb, "")("afu")("broadPhase")("clearBehind").bool, cb.id)
-    assert(cb.world.get.ramBits(4096) - pw.ramBits(4096) == 4L * 8192 * 11, "a table of 2^13 11-bit counters more in each of the four sorts")
+    assert(cb.broadPhase.get.ramBits(4096) - pw.ramBits(4096) == 4L * 8192 * 11, "a table of 2^13 11-bit counters more in each of the four sorts")
     // The near filter is the default; off, a name of its own, the same RAM.
-    assert(AfuConfig.world.world.get.nearFilter && AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("nearFilter").bool)
+    assert(AfuConfig.world.broadPhase.get.nearFilter && AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("nearFilter").bool)
     val wf = cfg("--preset", "world", "--world-near-filter", "false").toOption.get
     assert(wf.id.endsWith("_world16p8w5e2k32xuh8bxda6spwf") && !AfuManifest.json(wf, "")("afu")("broadPhase")("nearFilter").bool, wf.id)
-    assert(wf.world.get.ramBits(4096) == pw.ramBits(4096))
+    assert(wf.broadPhase.get.ramBits(4096) == pw.ramBits(4096))
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
@@ -145,10 +145,10 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world-hit-queue", "4")("--world-hit-queue", "world mode is not built")
     err("--world-box-buckets", "true")("--world-box-buckets", "world mode is not built")
     err("--world-near-filter", "false")("--world-near-filter", "world mode is not built")
-    err("--run-queue", "true")("--run-queue", "needs world mode")
+    err("--run-queue", "true")("--run-queue", "world mode is not built")
     err("--preset", "world", "--run-queue", "false", "--start-ahead", "true")("--start-ahead", "needs the run queue")
     err("--preset", "world", "--world-line-queue", "1")("--world-line-queue", "2..4096")
-    err("--world-line-queue", "8")("--world-line-queue", "needs world mode")
+    err("--world-line-queue", "8")("--world-line-queue", "world mode is not built")
     err("--scpus", "65")("--scpus", "1..64")
     err("--max-spheres", "1000")("--max-spheres", "power of two")
     err("--max-reads", "65")("--max-reads", "2^tagBits")

@@ -185,7 +185,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
 
   it should "find the same candidates with the sort's passes 16 spheres a cycle (eight sorts, each of an eighth of the table), fed into 16 claiming lanes with box buckets, in every hard case and random cloud" taggedAs (Slow) in {
-    fedWorlds("BroadPhaseSpec-16-ports", collide.afu.AfuConfig.world.world.get.copy(sortPorts = 16), 4, "16 sort ports: ", ws => ws)
+    fedWorlds("BroadPhaseSpec-16-ports", collide.afu.AfuConfig.world.broadPhase.get.copy(sortPorts = 16), 4, "16 sort ports: ", ws => ws)
   }
 
   it should "find the same candidates with one bucket a sphere (more cells sharing a bucket), in every hard case and random cloud" in {
