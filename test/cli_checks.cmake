@@ -45,6 +45,35 @@ if(CHECK STREQUAL "pairs_simd" OR CHECK STREQUAL "pairs_ode")
   if(NOT got STREQUAL want)
     message(FATAL_ERROR "contacts.csv differs:\n--- got\n${got}--- want\n${want}")
   endif()
+elseif(CHECK STREQUAL "pairs_sphere_plane")
+  # Sphere/plane vector mode (docs/pair-kinds.md): touching, sunk by half, a plane that ODE
+  # normalizes, a negative radius, a NaN, a value beyond binary32, a radius that becomes zero in
+  # binary32, a zero normal (ODE makes it (1, 0, 0, 0)). simd64 equals ODE's dCollide byte for byte.
+  file(WRITE ${WORK}/in.csv "cx,cy,cz,r,nx,ny,nz,d\n0,0,1,1,0,0,1,0\n0.25,-3,0.5,1,0,0,1,0\n10,10,10,1,1,1,1,1\n0,0,5,-1,0,0,1,0\nnan,0,0,1,0,0,1,0\n1e300,0,0,1,0,0,1,0\n0,0,1e-50,1e-50,0,0,1,0\n1,2,3,1,0,0,0,5\n")
+  foreach(backend simd simd64 ode)
+    execute_process(COMMAND ${COLLIDE} pairs --kind sphere-plane --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out-${backend}.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+    expect_match("${err}" "8 sphere/plane pairs")
+    expect_match("${err}" "collide pairs: flagged")
+  endforeach()
+  file(READ ${WORK}/out-simd64.csv got)
+  file(READ ${WORK}/out-ode.csv want)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "simd64 differs from ode:\n--- got\n${got}--- want\n${want}")
+  endif()
+  file(READ ${WORK}/out-simd.csv got)
+  set(want "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n0,1,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x1p+0,0x0p+0,1\n1,1,0x1p-2,-0x1.8p+1,-0x1p-1,0x0p+0,0x0p+0,0x1p+0,0x1p-1,1\n2,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0\n3,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n4,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,8\n5,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,40\n6,1,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x1p+0,0x0p+0,33\n7,1,0x0p+0,0x1p+1,0x1.8p+1,0x1p+0,0x0p+0,0x0p+0,0x0p+0,1\n")
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "simd sphere/plane contacts differ:\n--- got\n${got}--- want\n${want}")
+  endif()
+  # Backends without sphere/plane pairs are refused, naming the kind.
+  foreach(args "--backend;model:fp32" "--afu;${REPO}/generated/default")
+    execute_process(COMMAND ${COLLIDE} pairs --kind sphere-plane ${args} --in ${WORK}/in.csv --out ${WORK}/x.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(1)
+    expect_match("${err}" "--kind sphere-plane: ")
+  endforeach()
 elseif(CHECK STREQUAL "model_backend")
   # model:<preset>: an AFU preset's SCPU on the CPU. model:fp32 is binary32 with correctly
   # rounded roots, as simd: the same output byte for byte.

@@ -111,7 +111,13 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(wallRange);
   addClockOption(p, pairs.clockMHz, "the link preset's");
-  p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2), - for stdin")->required();
+  p->add_option("--kind", pairs.kind,
+                "pair kind: sphere-sphere, or sphere-plane (input cx,cy,cz,r,nx,ny,nz,d; simd, simd64 and ode "
+                "backends; docs/pair-kinds.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sphere-sphere", "sphere-plane"}));
+  p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2; sphere-plane: cx,cy,cz,r,nx,ny,nz,d), - for stdin")
+      ->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 
   SpheresOptions spheres;
