@@ -1,11 +1,11 @@
 # Verilating AFUs for the host (docs/host.md, "Plugging in the AFU").
 #
-# collide_verilate(<target> SOURCES <sv>... TOP <module> PREFIX <class> [TRACE OFF|VCD|FST] [ARGS ...])
+# collide_verilate(<target> SOURCES <sv>... TOP <module> PREFIX <class> [TRACE OFF|VCD|FST] [OPT_FAST <flag>] [ARGS ...])
 #   Adds the Verilated model V<prefix> to <target>. Verilator reruns only when a source
 #   (or the command) changes; the C++ is compiled with COLLIDE_VERILATOR_OPT_FAST on the
-#   per-cycle code and -O0 on the construction/trace code (-O2 everywhere makes builds of
-#   big models take many minutes; docs/host.md, "The Verilator harness", has the measured
-#   times), split in chunks so both cores compile at once.
+#   per-cycle code (OPT_FAST overrides it) and -O0 on the construction/trace code (-O2
+#   everywhere makes builds of big models take many minutes; docs/host.md, "The Verilator
+#   harness", has the measured times), split in chunks so both cores compile at once.
 #
 # collide_add_afu_library(<target> <preset> <trace>)
 #   Defines <target>, the library that implements driver/afu_factory.hpp:
@@ -16,8 +16,9 @@
 #   manifest text is compiled in, so `makeAfuPort(dir)` refuses a folder whose manifest
 #   differs. <trace>: OFF, VCD or FST (ON means FST).
 #
-# collide_add_afu_library_from_dir(<target> <dir> <preset> <trace>)
-#   The same for an explicit folder (used by the tests for the test-double AFU).
+# collide_add_afu_library_from_dir(<target> <dir> <preset> <trace> [<opt_fast>])
+#   The same for an explicit folder (used by the tests for their own AFUs); <opt_fast> overrides
+#   COLLIDE_VERILATOR_OPT_FAST for this model.
 
 include("${CMAKE_CURRENT_LIST_DIR}/CollideTiming.cmake")
 
@@ -33,7 +34,10 @@ function(collide_find_verilator)
 endfunction()
 
 function(collide_verilate target)
-  cmake_parse_arguments(CV "" "TOP;PREFIX;TRACE" "SOURCES;ARGS" ${ARGN})
+  cmake_parse_arguments(CV "" "TOP;PREFIX;TRACE;OPT_FAST" "SOURCES;ARGS" ${ARGN})
+  if(NOT CV_OPT_FAST)
+    set(CV_OPT_FAST ${COLLIDE_VERILATOR_OPT_FAST})
+  endif()
   collide_find_verilator()
   string(TOUPPER "${CV_TRACE}" trace)
   set(trace_kw "")
@@ -59,7 +63,7 @@ function(collide_verilate target)
   verilate(${target} SOURCES ${CV_SOURCES} TOP_MODULE ${CV_TOP} PREFIX ${CV_PREFIX} ${trace_kw} ${threads_kw}
            VERILATOR_ARGS -Wno-fatal -Wno-lint -Wno-style --x-assign fast --x-initial fast
                           --output-split 20000 --output-split-cfuncs 20000 -I${COLLIDE_REPO_ROOT}/generated ${CV_ARGS}
-           OPT_FAST ${COLLIDE_VERILATOR_OPT_FAST} -w ${plain}
+           OPT_FAST ${CV_OPT_FAST} -w ${plain}
            OPT_SLOW -O0 -w ${plain}
            OPT_GLOBAL -O2 -w ${plain})
   # Verilator's headers as system headers: our own -Wall -Wextra stays on our code.
@@ -89,6 +93,7 @@ function(collide_read_manifest dir out_top out_preset)
 endfunction()
 
 function(collide_add_afu_library_from_dir target gen_dir preset trace)
+  set(opt_fast "${ARGV4}")
   file(GLOB afu_sv CONFIGURE_DEPENDS "${gen_dir}/*.sv" "${gen_dir}/*.v")
   if(NOT afu_sv)
     message(FATAL_ERROR "AFU ${gen_dir}: no Verilog (*.sv, *.v) there; run the generator first")
@@ -123,7 +128,7 @@ const char* collideBuiltInTimingNote() { return R\"collide_timing(@COLLIDE_TIMIN
   target_compile_definitions(${target} PRIVATE
     COLLIDE_AFU_PRESET="${preset}" COLLIDE_AFU_DIR="${gen_dir}"
     COLLIDE_AFU_VTOP=V${top} COLLIDE_AFU_VTOP_HEADER="V${top}.h")
-  collide_verilate(${target} SOURCES ${afu_sv} TOP ${top} PREFIX V${top} TRACE ${trace})
+  collide_verilate(${target} SOURCES ${afu_sv} TOP ${top} PREFIX V${top} TRACE ${trace} OPT_FAST "${opt_fast}")
   message(STATUS "AFU: ${gen_dir} (top ${top}, preset ${preset}, trace ${trace}) Verilated into ${target}")
 endfunction()
 
