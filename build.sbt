@@ -15,7 +15,7 @@ val suiteSeconds = Map(
   "FpSqrtSpec" -> 37, "BucketSortSpec" -> 24, "FpMulSpec" -> 40, "ReadEngineFormalSpec" -> 23,
   "ContactCollectorSpec" -> 10, "WorldPairLinesSpec" -> 16, "ChunkMatcherFormalSpec" -> 18,
   "BroadPhaseModelSpec" -> 14, "NewtonRaphsonCoreSpec" -> 14, "NewtonRaphsonErrorSpec" -> 7,
-  "FpConvertSpec" -> 12, "TagPoolFormalSpec" -> 11, "BucketSortFormalSpec" -> 14, "SpherePlaneSpec" -> 25)
+  "FpConvertSpec" -> 12, "TagPoolFormalSpec" -> 11, "BucketSortFormalSpec" -> 14, "SpherePlaneSpec" -> 25, "CapsuleSphereSpec" -> 35)
 
 // sbt's default allows one forked test group at a time; the two groups below run together.
 Global / concurrentRestrictions := Seq(

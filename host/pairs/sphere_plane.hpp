@@ -6,15 +6,12 @@
 // (collide.pairs.model.SpherePlaneModel) in binary32 (test/test_pair_kinds.cpp checks both).
 // docs/pair-kinds.md describes the kind, its order of operations and its error bound.
 
+#include "pairs/contact.hpp"
+
 namespace collide::pairs {
 
 template <typename T>
-struct SpherePlaneContact {
-  bool hit = false;
-  T pos[3] = {0, 0, 0};
-  T normal[3] = {0, 0, 0};
-  T depth = 0;
-};
+using SpherePlaneContact = Contact<T>;
 
 // c: the sphere's centre, r its radius; plane: (nx, ny, nz, d) as dGeomPlaneGetParams gives it
 // (a unit normal; the plane is n . x = d). One contact, or none (hit false, every field 0).

@@ -1,0 +1,84 @@
+package collide.pairs
+
+import scala.util.Random
+import chisel3._
+import chiseltest._
+import org.scalatest.flatspec.AnyFlatSpec
+import collide.pairs.model._
+import collide.scpu.ScpuConfig
+import collide.scpu.model.ScpuResult
+import collide.testutil.{Builds, Seeds, Slow}
+
+/** The CapsuleSphere unit against CapsuleSphereModel, bit for bit (kind, every field, d, w,
+  * flags, nonFinite, tag), on Verilator: the hard cases back to back (each result exactly
+  * `latency` cycles on), then random pairs with input bubbles and stalls (io.en low). */
+class CapsuleSphereSpec extends AnyFlatSpec with ChiselScalatestTester {
+  behavior of "CapsuleSphere"
+
+  private def run(cfg: ScpuConfig, n: Int): Unit = {
+    val rng = Seeds.rng(s"CapsuleSphereSpec-${cfg.name}")
+    val vec = new CapsuleSphereVectors(cfg)
+    val labelled = vec.hardCases ++ Seq.tabulate(n)(i => s"random $i" -> vec.random(rng, if (i % 4 == 0) 1e3 else 10)) ++
+      Seq.tabulate(n / 4)(i => s"raw $i" -> vec.raw(rng))
+    val pairs = labelled.zipWithIndex.map { case ((_, p), i) => p.copy(tag = BigInt(i)) }
+    val model = new CapsuleSphereModel(cfg)
+    val expected = pairs.map(model.collide)
+    test(new CapsuleSphere(cfg)).withAnnotations(Builds.verilator("CapsuleSphereSpec", cfg.id)) { dut =>
+      val lat = CapsuleSphere.latency(cfg)
+      def poke(p: CapsuleSpherePair): Unit = {
+        val i = dut.io.in.bits
+        Seq(i.cx, i.cy, i.cz, i.ax, i.ay, i.az, i.lz, i.rc, i.sx, i.sy, i.sz, i.rs).zip(p.fields).foreach { case (port, v) => port.poke(v.U) }
+        i.tag.poke(p.tag.U)
+      }
+      def check(k: Int): Unit = {
+        val o = dut.io.out.bits
+        val got = ScpuResult(o.hit.peek().litToBoolean, o.kind.peek().litValue.toInt, o.px.peek().litValue, o.py.peek().litValue,
+          o.pz.peek().litValue, o.nx.peek().litValue, o.ny.peek().litValue, o.nz.peek().litValue, o.depth.peek().litValue,
+          o.meta.nonFinite.peek().litToBoolean, o.meta.flags.peek().litValue.toInt, o.meta.tag.peek().litValue,
+          o.d.peek().litValue, o.nw.peek().litValue)
+        assert(got == expected(k), s"${cfg.name}, ${labelled(k)._1}: ${pairs(k)}\n  rtl   ${got.show}\n  model ${expected(k).show}")
+      }
+      val h = vec.hardCases.size
+      dut.io.en.poke(true.B)
+      for (t <- 0 until h + lat) {
+        dut.io.in.valid.poke((t < h).B)
+        if (t < h) poke(pairs(t))
+        if (t >= lat) { dut.io.out.valid.expect(true.B); check(t - lat) } else dut.io.out.valid.expect(false.B)
+        dut.clock.step()
+      }
+      dut.io.out.valid.expect(false.B)
+      val stim = new Random(rng.nextLong())
+      var next = 0
+      var seen = 0
+      var cycles = 0
+      while (seen < pairs.size && cycles < 4 * pairs.size + 1000) {
+        val en = stim.nextInt(4) != 0
+        dut.io.en.poke(en.B)
+        val send = en && next < pairs.size && stim.nextInt(10) != 0
+        dut.io.in.valid.poke(send.B)
+        if (send) poke(pairs(next))
+        if (en && dut.io.out.valid.peek().litToBoolean) {
+          val k = dut.io.out.bits.meta.tag.peek().litValue.toInt
+          assert(k == seen, s"${cfg.name}: result for pair $k where pair $seen was due")
+          check(k)
+          seen += 1
+        }
+        if (send) next += 1
+        dut.clock.step()
+        cycles += 1
+      }
+      assert(seen == pairs.size, s"${cfg.name}: $seen of ${pairs.size} results in $cycles cycles")
+      info(s"${cfg.name}: ${pairs.size} pairs (${vec.hardCases.size} hard cases), latency $lat, ${expected.count(_.hit)} contacts")
+    }
+  }
+
+  it should "equal its golden model bit for bit in fp32 pipelined for 200 MHz, through stalls and bubbles" in {
+    run(ScpuConfig.fp32At200, Seeds.cases(3000))
+  }
+  it should "equal its golden model bit for bit in fp16, where products overflow" in {
+    run(ScpuConfig.fp16, Seeds.cases(3000))
+  }
+  it should "equal its golden model bit for bit in fp64" taggedAs (Slow) in {
+    run(ScpuConfig.fp64, Seeds.cases(3000))
+  }
+}
