@@ -54,7 +54,7 @@ elseif(CHECK STREQUAL "pairs_sphere_plane")
     execute_process(COMMAND ${COLLIDE} pairs --kind sphere-plane --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out-${backend}.csv
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     expect_rc(0)
-    expect_match("${err}" "8 sphere/plane pairs")
+    expect_match("${err}" "8 sphere-plane pairs")
     expect_match("${err}" "collide pairs: flagged")
   endforeach()
   file(READ ${WORK}/out-simd64.csv got)
@@ -74,6 +74,29 @@ elseif(CHECK STREQUAL "pairs_sphere_plane")
     expect_rc(1)
     expect_match("${err}" "--kind sphere-plane: ")
   endforeach()
+elseif(CHECK STREQUAL "pairs_capsule_sphere")
+  # Capsule/sphere vector mode (docs/pair-kinds.md): beside the middle, touching a cap, beyond
+  # the other cap, centre on the axis (coincident), an axis ODE normalizes, a zero axis, a
+  # negative length, a NaN, a radius that becomes zero in binary32. simd64 equals ODE's
+  # dCollide byte for byte.
+  file(WRITE ${WORK}/in.csv "cx,cy,cz,ax,ay,az,lz,rc,sx,sy,sz,rs\n0,0,0,0,0,1,2,1,1.5,0,0,1\n0,0,0,0,0,1,2,1,0,0,3,1\n0,0,0,0,0,1,2,1,0.5,0,-2.5,1\n0,0,0,0,0,1,2,1,0,0,0.5,0.25\n1,1,1,1,1,1,4,0.5,2,1,1,0.75\n0,0,0,0,0,0,2,1,0,0,0,1\n0,0,0,0,0,1,-2,1,0,0,0,1\n0,0,0,0,0,1,2,1,nan,0,0,1\n0,0,0,0,0,1,2,1e-50,3,0,0,1\n")
+  foreach(backend simd simd64 ode)
+    execute_process(COMMAND ${COLLIDE} pairs --kind capsule-sphere --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out-${backend}.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+    expect_match("${err}" "9 capsule-sphere pairs, 5 contacts")
+    expect_match("${err}" "collide pairs: flagged")
+  endforeach()
+  file(READ ${WORK}/out-simd64.csv got)
+  file(READ ${WORK}/out-ode.csv want)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "simd64 differs from ode:\n--- got\n${got}--- want\n${want}")
+  endif()
+  file(READ ${WORK}/out-simd.csv got)
+  set(want "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n0,1,0x1.8p-1,0x0p+0,0x0p+0,-0x1p+0,0x0p+0,0x0p+0,0x1p-1,1\n1,1,0x0p+0,0x0p+0,0x1p+1,0x0p+0,0x0p+0,-0x1p+0,0x0p+0,1\n2,1,0x1p-2,0x0p+0,-0x1.cp+0,-0x1.43d136p-2,0x0p+0,0x1.e5b9dp-1,0x1.ace9fp-2,1\n3,1,0x0p+0,0x0p+0,0x1p-1,0x1p+0,0x0p+0,0x0p+0,0x1.4p+0,1\n4,1,0x1.9089ecp+0,0x1.37bb08p+0,0x1.37bb08p+0,-0x1.a20bdcp-1,0x1.a20bd2p-2,0x1.a20bd2p-2,0x1.bbe854p-2,1\n5,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n6,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n7,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,8\n8,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n")
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "simd capsule/sphere contacts differ:\n--- got\n${got}--- want\n${want}")
+  endif()
 elseif(CHECK STREQUAL "model_backend")
   # model:<preset>: an AFU preset's SCPU on the CPU. model:fp32 is binary32 with correctly
   # rounded roots, as simd: the same output byte for byte.

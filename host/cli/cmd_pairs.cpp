@@ -48,7 +48,7 @@ std::string flaggedSummary(const ContactSet& c) {
 }  // namespace
 
 int runPairs(const PairsOptions& o) {
-  if (o.kind == "sphere-plane") return runSpherePlanePairs(o);
+  if (o.kind != "sphere-sphere") return runKindPairs(o);
   return reportErrors("collide pairs", [&]() -> int {
     BackendRequest req;
     std::optional<driver::ClockChoice> clock;

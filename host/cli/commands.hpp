@@ -27,7 +27,7 @@ struct RunOptions {
 };
 
 struct PairsOptions {
-  std::string kind = "sphere-sphere";  // or sphere-plane (docs/pair-kinds.md)
+  std::string kind = "sphere-sphere";  // or sphere-plane, capsule-sphere (docs/pair-kinds.md)
   std::string afu;      // rtl with the AFU in this generated/<preset> folder
   std::string backend;  // simd | ode (until the AFU exists)
   std::string link = link::kDefaultPreset;  // rtl only: a link preset name
@@ -68,7 +68,7 @@ struct InfoOptions {
 
 int runScene(const RunOptions& o);
 int runPairs(const PairsOptions& o);
-int runSpherePlanePairs(const PairsOptions& o);  // runPairs for --kind sphere-plane
+int runKindPairs(const PairsOptions& o);  // runPairs for the kinds beyond spheres
 int runInfo(const InfoOptions& o);
 int runSpheres(const SpheresOptions& o);
 

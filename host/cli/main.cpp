@@ -112,11 +112,11 @@ int main(int argc, char** argv) {
       ->check(wallRange);
   addClockOption(p, pairs.clockMHz, "the link preset's");
   p->add_option("--kind", pairs.kind,
-                "pair kind: sphere-sphere, or sphere-plane (input cx,cy,cz,r,nx,ny,nz,d; simd, simd64 and ode "
-                "backends; docs/pair-kinds.md)")
+                "pair kind: sphere-sphere, sphere-plane (input cx,cy,cz,r,nx,ny,nz,d) or capsule-sphere (input "
+                "cx,cy,cz,ax,ay,az,lz,rc,sx,sy,sz,rs); the last two on the simd, simd64 and ode backends (docs/pair-kinds.md)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"sphere-sphere", "sphere-plane"}));
-  p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2; sphere-plane: cx,cy,cz,r,nx,ny,nz,d), - for stdin")
+      ->check(CLI::IsMember({"sphere-sphere", "sphere-plane", "capsule-sphere"}));
+  p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2, or the --kind's columns), - for stdin")
       ->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 
