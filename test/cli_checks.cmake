@@ -315,6 +315,29 @@ elseif(CHECK STREQUAL "afu_run_pile_box")
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   expect_rc(0)
   expect_match("${out}" "AFU \\(modelled, link qpi\\): [1-9][0-9]* runs")
+elseif(CHECK STREQUAL "afu_run_require")
+  # collision.require (docs/pair-kinds.md): a kind the AFU has units for runs; one it lacks is
+  # refused before any step, naming the kind and the AFU; the summary says where each kind went.
+  set(scene "{\"name\": \"require\", \"steps\": 2, \"dt\": 0.01, \"effects\": {\"gravity\": [0, 0, -9.81], \"planes\": [{\"normal\": [0, 0, 1], \"offset\": 0}]}, \"collision\": {\"require\": [@KINDS@]}, \"bodies\": {\"spheres\": [{\"pos\": [0, 0, 0.5], \"r\": 0.6}, {\"pos\": [0, 0, 1.5], \"r\": 0.6}]}}")
+  string(REPLACE "@KINDS@" "\"sphere-sphere\"" ok "${scene}")
+  file(WRITE ${WORK}/ok.json "${ok}")
+  execute_process(COMMAND ${COLLIDE} run ${WORK}/ok.json --backend rtl --summary ${WORK}/ok-summary.json
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  file(READ ${WORK}/ok-summary.json summary)
+  string(JSON on GET "${summary}" pair_kinds sphere-plane on)
+  string(JSON planePairs GET "${summary}" pair_kinds sphere-plane pairs)
+  expect_match("${on}" "^ode")
+  expect_match("${planePairs}" "^[1-9]")
+  string(REPLACE "@KINDS@" "\"sphere-sphere\", \"sphere-plane\"" bad "${scene}")
+  file(WRITE ${WORK}/bad.json "${bad}")
+  execute_process(COMMAND ${COLLIDE} run ${WORK}/bad.json --backend rtl --out ${WORK}/steps.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "collision.require names sphere-plane, but the AFU built in \\(default\\) has units for sphere-sphere only")
+  if(EXISTS ${WORK}/steps.csv)
+    message(FATAL_ERROR "a refused run wrote steps.csv")
+  endif()
 elseif(CHECK STREQUAL "cosim_equals_rtl")
   # The RTL default AFU and cosim (its SCPUs the C++ model) on the same scenes over HARP v1 and
   # a hostile link: the same AFU counters to the cycle, the same modelled time, the same contacts

@@ -75,6 +75,12 @@ TEST(SceneErrors, InlineFaults) {
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"ofload": "world"}, "bodies": {"diamond": {"hMax": 2}}})")
                 .rfind("scene.collision.ofload: unknown key", 0),
             0u);
+  // collision.require names pair kinds (docs/pair-kinds.md), each checked by its index.
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"require": ["sphere-sphere", "box-box"]}, "bodies": {"diamond": {"hMax": 2}}})"),
+            "scene.collision.require[1]: expected sphere-sphere, sphere-plane or capsule-sphere, got \"box-box\"");
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"require": "sphere-plane"}, "bodies": {"diamond": {"hMax": 2}}})")
+                .rfind("scene.collision.require: expected an array", 0),
+            0u);
 }
 
 TEST(Scenes, ExampleScenesLoadAsDeclared) {

@@ -130,6 +130,20 @@ struct Engines {
   std::string name;
 };
 
+// collision.require with backend rtl: every kind named must have units on the AFU, or the run
+// is refused before its first step, naming the kind and the AFU.
+void refuseMissingKinds(const scene::Scene& sc) {
+  if (sc.requireKinds.empty()) return;
+  const driver::Manifest m = driver::afuManifest(sc.afuDir);
+  std::string has;
+  for (const auto& k : m.pairKinds) has += (has.empty() ? "" : ", ") + k;
+  const std::string afu = sc.afuDir.empty() ? "built in (" + driver::builtInAfuPreset() + ")" : sc.afuDir.string();
+  for (const auto& k : sc.requireKinds)
+    if (std::find(m.pairKinds.begin(), m.pairKinds.end(), k) == m.pairKinds.end())
+      throw std::invalid_argument("scene " + sc.name + ": collision.require names " + k + ", but the AFU " + afu +
+                                  " has units for " + has + " only (its manifest's afu.pairKinds; docs/pair-kinds.md)");
+}
+
 Engines makeEngines(const scene::Scene& sc, const RunOptions& o, bool rtl) {
   BackendRequest req{sc.backend, sc.afuDir, sc.link, {}, {}};
   req.driver.skipIdle = !o.noSkip;
@@ -207,6 +221,7 @@ void addStep(RunTotals& tot, const sim::StepStats& st, const CpuPeers::Step& cpu
   tot.pairs += st.pairsTested;
   tot.contacts += st.contacts;
   tot.otherContacts += st.otherContacts;
+  tot.otherPairs += st.otherPairs;
   tot.backendNs += st.backendNs;
   tot.odeNs += cpu.odeNs;
   tot.simdNs += cpu.simdNs;
@@ -340,6 +355,11 @@ void writeSummary(OutputFile& summaryFile, const scene::Scene& sc, const RunOpti
   j["offload"] = e.engine ? "world" : "pairs";
   j["pairs"] = tot.pairs;
   j["contacts"] = tot.contacts;
+  // Where each pair kind went (docs/pair-kinds.md): sphere/sphere to the backend, sphere/plane
+  // to ODE's own dCollide on the CPU (no AFU has sphere/plane units yet).
+  j["pair_kinds"] = {{"sphere-sphere", {{"on", j["backend"]}, {"pairs", tot.pairs}, {"contacts", tot.contacts}}},
+                     {"sphere-plane", {{"on", "ode (dCollide on the CPU)"}, {"pairs", tot.otherPairs},
+                                       {"contacts", tot.otherContacts}, {"narrow_ns", tot.otherNarrowNs}}}};
   j["ode_ns"] = tot.odeNs;
   j["simd_ns"] = tot.simdNs;
   j["simd64_ns"] = tot.simd64Ns;
@@ -395,6 +415,7 @@ int runScene(const RunOptions& o) {
     if (rtl) clock = applyClockOption(sc.link, o.clockMHz);  // over the scene's link or --link
     else refuseClockOption(o.clockMHz, "backend " + sc.backend);
     const Engines e = makeEngines(sc, o, rtl);
+    if (rtl) refuseMissingKinds(sc);
 
     std::cout << "scene " << sc.name << ": " << sc.spheres.size() << " spheres, " << sc.steps << " steps, dt " << sc.dt
               << ", backend " << e.name << ", link " << (rtl ? sc.link.name : std::string("not simulated (CPU backend)"));

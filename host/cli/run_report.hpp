@@ -9,7 +9,7 @@
 namespace collide::cli {
 
 struct RunTotals {
-  std::uint64_t pairs = 0, contacts = 0, otherContacts = 0;
+  std::uint64_t pairs = 0, contacts = 0, otherPairs = 0, otherContacts = 0;
   std::int64_t backendNs = 0, odeNs = 0, simdNs = 0, simd64Ns = 0;
   std::uint64_t hitMismatches = 0;    // pairs where ode and simd disagree on hit
   std::uint64_t hit64Mismatches = 0;  // the same for simd64 (0 unless its arithmetic left ODE's)

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "afu_contract.hpp"
+#include "batch/pair_kinds.hpp"
 #include "driver/afu_layout.hpp"
 #include "util/echo.hpp"
 #include "util/input_file.hpp"
@@ -84,6 +85,9 @@ Manifest fromJson(nlohmann::json raw, const std::string& file) {
   if (m.world && (m.records == contract::LAYOUT_FULL_MASKED || m.records == contract::LAYOUT_DERIVED_MASKED))
     bad("afu.world: world mode needs an indexed record layout, the manifest says " + layout);
   m.runQueue = at("/afu/runQueue", false);
+  m.pairKinds = at("/afu/pairKinds", std::vector<std::string>{"sphere-sphere"});
+  for (const auto& k : m.pairKinds)
+    if (!isPairKind(k)) bad("afu.pairKinds: expected " + pairKindList() + ", got " + util::clip(k));
   if (m.runQueue && !m.world) bad("afu.runQueue: a run queue needs world mode (afu.world)");
   if (m.world && ms > (1LL << contract::TAG_WORLD_INDEX_BITS))
     bad("afu.world: world mode holds at most " + std::to_string(1u << contract::TAG_WORLD_INDEX_BITS) + " spheres, afu.maxSpheres is " + std::to_string(ms));

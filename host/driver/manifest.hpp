@@ -5,6 +5,8 @@
 // subnormals, distance); the rest is printed by `collide info`.
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +23,8 @@ struct Manifest {
   std::uint32_t maxSpheres = 65536;
   bool world = false;          // afu.world: world mode (MODE_WORLD) is built
   bool runQueue = false;       // afu.runQueue: a start during a run queues one more (world mode)
+  // afu.pairKinds: the pair kinds it has units for (batch/pair_kinds.hpp; absent: sphere-sphere)
+  std::vector<std::string> pairKinds{"sphere-sphere"};
 };
 
 // Throws std::runtime_error naming the file: missing, unreadable, bad JSON, bad field.

@@ -69,6 +69,9 @@ struct Scene {
   // ODE's broad phase on the pairs path: its hash space (ODE's default, up to
   // limits::kMaxHashSpaceSpheres spheres) or sweep and prune (any count).
   limits::OdeSpaceKind space = limits::OdeSpaceKind::Hash;
+  // collision.require: the pair kinds (batch/pair_kinds.hpp) the scene needs the AFU to compute;
+  // with backend rtl, a kind the AFU has no units for is refused before any step.
+  std::vector<std::string> requireKinds;
   std::filesystem::path afuDir;        // rtl: generated/<preset>
   link::LinkParams link = link::presetParams(link::kDefaultPreset);
   // rtl: wall-clock limit of one AFU run (unset: driver::kDefaultWallLimitS).

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "batch/pair_kinds.hpp"
 #include "batch/sane_ranges.hpp"
 #include "driver/wall_watchdog.hpp"
 #include "link/link_presets.hpp"
@@ -269,7 +270,15 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
     if (s.afuDir.is_relative() && !baseDir.empty()) s.afuDir = baseDir / s.afuDir;
   }
   if (auto c = root.find("collision")) {
-    c->allowOnly({"offload", "space"});
+    c->allowOnly({"offload", "space", "require"});
+    if (auto v = c->find("require")) {
+      for (std::size_t k = 0; k < v->arraySize(); ++k) {
+        const JsonNode e = (*v)[k];
+        const std::string kind = e.string();
+        if (!isPairKind(kind)) e.expected(pairKindList());
+        s.requireKinds.push_back(kind);
+      }
+    }
     if (auto v = c->find("offload")) {
       const std::string o = v->string();
       if (o == "pairs") s.offload = Scene::Offload::Pairs;

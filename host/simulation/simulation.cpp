@@ -163,6 +163,7 @@ StepStats Simulation::step() {
   }
   for (const auto& g : otherContacts_) st.maxDepthM = std::max(st.maxDepthM, g.depth);
   st.otherContacts = otherContacts_.size();
+  st.otherPairs = otherPairs_.size();
   t0 = Clock::now();
   st.jointsNs = nsBetween(afterObserver, t0);
 

@@ -26,6 +26,7 @@ struct StepStats {
   long long step = 0;
   std::size_t pairsTested = 0;    // sphere/sphere candidates sent to the backend
   std::size_t contacts = 0;       // of those, hits (one contact joint each)
+  std::size_t otherPairs = 0;     // sphere/plane pairs ODE's space found, collided on the CPU
   std::size_t otherContacts = 0;  // sphere/plane contacts found on the CPU
   std::int64_t backendNs = 0;     // wall time of the backend call (the sphere/sphere narrow phase)
   // Where the step's wall time went (the observer's own work excluded):

@@ -73,6 +73,9 @@ final case class AfuConfig(
   def broadPhase: Option[collide.world.BroadPhaseParams] = world.map(_.broadPhase)
   /** A run queue (world mode only: WorldConfig.runQueue). */
   def runQueue: Boolean = world.exists(_.runQueue)
+  /** The pair kinds this AFU has units for (docs/pair-kinds.md; the manifest's afu.pairKinds):
+    * its SCPUs'. The other kinds' units (collide.pairs) are not built into an AFU yet. */
+  def pairKinds: Seq[String] = Seq("sphere-sphere")
   /** The record layout in effect (bestLayout unless asked for). */
   val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu, world.isDefined))
 

@@ -28,6 +28,7 @@ object AfuManifest {
         "pairLatency" -> cfg.pairLatency, "pairBufferLines" -> p.pairBufferLines,
         "groupsInFlight" -> p.groupsInFlight, "scpuQueueDepth" -> p.scpuQueueDepth,
         "writeQueueLines" -> p.writeQueueLines,
+        "pairKinds" -> cfg.pairKinds,
         "world" -> cfg.world.isDefined,
         "runQueue" -> cfg.runQueue, "sphereTables" -> p.tables,
         "broadPhase" -> cfg.world.map { w =>
