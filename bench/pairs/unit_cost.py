@@ -9,6 +9,8 @@ every operator pipelined for 200 MHz). One sbt run writes the units (collide.pai
 PairUnitsGen); then Yosys's area proxy (bench/area/yosys_area.sh: LUT cells, carry cells, DSP
 blocks, flip-flops) and timing proxy (bench/area/yosys_timing.sh: Cyclone V and Arria V cell
 delays, no routing) on each, two at a time, cached by the Verilog (bench/sweeplib/area.py).
+`--cached-only` writes the rows whose results are cached and leaves the others "not measured"
+(for a run cut short: Yosys takes minutes on a unit holding an SCPU datapath).
 """
 import argparse
 import csv
@@ -37,8 +39,10 @@ def generate(specs, out: Path):
     return rows
 
 
-def cost(u: dict, log_dir: Path) -> dict:
+def cost(u: dict, log_dir: Path, cached_only: bool = False) -> dict:
     cid = u["top"].split("_", 1)[1]  # the SCPU configuration's id, which every module name carries
+    if cached_only and not (area.is_cached(u["file"], u["top"], cid) and area.timing_is_cached(u["file"], u["top"], cid)):
+        return {"kind": u["kind"], "scpu": u["scpu"], "latency": u["latency"], "path_from": "not measured"}
     a = area.synth(u["file"], u["top"], log_dir, cid)
     t = area.timing(u["file"], u["top"], log_dir, cid)
     row = {"kind": u["kind"], "scpu": u["scpu"], "latency": u["latency"], **{k: a.get(k, "") for k in area.CELLS}}
@@ -54,12 +58,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("specs", nargs="*", default=["fp16:mhz=200", "fp32:mhz=200"])
     ap.add_argument("--out", default=str(ROOT / "bench" / "results" / "pair-kinds" / "units.csv"))
+    ap.add_argument("--cached-only", action="store_true", help="report cached results only, the rest 'not measured'")
     a = ap.parse_args()
     build = ROOT / "build" / "pair-units"
     units = generate(a.specs, build)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
     with ThreadPoolExecutor(2) as pool:
-        rows = list(pool.map(lambda u: cost(u, build / "logs"), units))
+        rows = list(pool.map(lambda u: cost(u, build / "logs", a.cached_only), units))
     out = Path(a.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     with out.open("w", newline="") as f:
@@ -68,8 +73,8 @@ def main():
         for r in rows:
             w.writerow({**r, "commit": commit})
     for r in rows:
-        print(f"{r['kind']:15} {r['scpu']:14} latency {r['latency']:4}  luts {r['luts']}  dsp {r['dsp']}  ff {r['ff']}  "
-              f"cyclonev {r['cyclonev_ps']} ps")
+        print(f"{r['kind']:15} {r['scpu']:14} latency {r['latency']:4}  luts {r.get('luts', '-')}  dsp {r.get('dsp', '-')}  "
+              f"ff {r.get('ff', '-')}  cyclonev {r.get('cyclonev_ps', '-')} ps")
     print(f"wrote {out}")
 
 
