@@ -48,6 +48,21 @@ bool sameContact(const SpherePlaneContact<T>& a, const SpherePlaneContact<T>& b)
   return sameBits(a.depth, b.depth);
 }
 
+// ODE's own dCollide on two geoms, its one contact as a reference's.
+SpherePlaneContact<double> odeContact(dGeomID a, dGeomID b) {
+  dContactGeom g{};
+  SpherePlaneContact<double> out;
+  if (dCollide(a, b, 1, &g, sizeof(dContactGeom)) == 1) {
+    out.hit = true;
+    for (int i = 0; i < 3; ++i) {
+      out.pos[i] = g.pos[i];
+      out.normal[i] = g.normal[i];
+    }
+    out.depth = g.depth;
+  }
+  return out;
+}
+
 struct SpherePlaneCase {
   double c[3];
   double r;
@@ -63,16 +78,7 @@ SpherePlaneContact<double> odeSpherePlane(const SpherePlaneCase& k, double param
   dVector4 q;
   dGeomPlaneGetParams(p, q);
   for (int i = 0; i < 4; ++i) params[i] = q[i];
-  dContactGeom g{};
-  SpherePlaneContact<double> out;
-  if (dCollide(s, p, 1, &g, sizeof(dContactGeom)) == 1) {
-    out.hit = true;
-    for (int i = 0; i < 3; ++i) {
-      out.pos[i] = g.pos[i];
-      out.normal[i] = g.normal[i];
-    }
-    out.depth = g.depth;
-  }
+  const auto out = odeContact(s, p);
   dGeomDestroy(s);
   dGeomDestroy(p);
   return out;
@@ -238,16 +244,7 @@ SpherePlaneContact<double> odeCapsuleSphere(const CapsuleSphereCase& k, double a
   axis[2] = q[10];
   dGeomID sph = dCreateSphere(nullptr, k.rs);
   dGeomSetPosition(sph, k.s[0], k.s[1], k.s[2]);
-  dContactGeom g{};
-  SpherePlaneContact<double> out;
-  if (dCollide(cap, sph, 1, &g, sizeof(dContactGeom)) == 1) {
-    out.hit = true;
-    for (int i = 0; i < 3; ++i) {
-      out.pos[i] = g.pos[i];
-      out.normal[i] = g.normal[i];
-    }
-    out.depth = g.depth;
-  }
+  const auto out = odeContact(cap, sph);
   dGeomDestroy(cap);
   dGeomDestroy(sph);
   return out;

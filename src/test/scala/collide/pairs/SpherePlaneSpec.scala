@@ -36,38 +36,8 @@ class SpherePlaneSpec extends AnyFlatSpec with ChiselScalatestTester {
           o.nonFinite.peek().litToBoolean, o.flags.peek().litValue.toInt, o.tag.peek().litValue)
         assert(got == expected(k), s"${cfg.name}, ${labelled(k)._1}: ${pairs(k)}\n  rtl   $got\n  model ${expected(k)}")
       }
-      // The hard cases back to back: pair k's result exactly `lat` cycles after it.
-      val h = vec.hardCases.size
-      dut.io.en.poke(true.B)
-      for (t <- 0 until h + lat) {
-        dut.io.in.valid.poke((t < h).B)
-        if (t < h) poke(pairs(t))
-        if (t >= lat) { dut.io.out.valid.expect(true.B); check(t - lat) } else dut.io.out.valid.expect(false.B)
-        dut.clock.step()
-      }
-      dut.io.out.valid.expect(false.B)
-      // Everything, with a quarter of the cycles stalled and a tenth of the inputs empty.
-      val stim = new Random(rng.nextLong())
-      var next = 0
-      var seen = 0
-      var cycles = 0
-      while (seen < pairs.size && cycles < 4 * pairs.size + 1000) {
-        val en = stim.nextInt(4) != 0
-        dut.io.en.poke(en.B)
-        val send = en && next < pairs.size && stim.nextInt(10) != 0
-        dut.io.in.valid.poke(send.B)
-        if (send) poke(pairs(next))
-        if (en && dut.io.out.valid.peek().litToBoolean) {
-          val k = dut.io.out.bits.tag.peek().litValue.toInt
-          assert(k == seen, s"${cfg.name}: result for pair $k where pair $seen was due")
-          check(k)
-          seen += 1
-        }
-        if (send) next += 1
-        dut.clock.step()
-        cycles += 1
-      }
-      assert(seen == pairs.size, s"${cfg.name}: $seen of ${pairs.size} results in $cycles cycles")
+      PairUnitDriver.run(dut.clock, dut.io.en, dut.io.in.valid, dut.io.out.valid, lat, vec.hardCases.size, pairs.size,
+        new Random(rng.nextLong()), cfg.name)(k => poke(pairs(k)), () => dut.io.out.bits.tag.peek().litValue.toInt, check)
       info(s"${cfg.name}: ${pairs.size} pairs (${vec.hardCases.size} hard cases), latency $lat, ${expected.count(_.hit)} contacts")
     }
   }
