@@ -27,6 +27,29 @@ function(expect_simd_contacts file what)
   endif()
 endfunction()
 
+# Vector mode for a pair kind beyond spheres (docs/pair-kinds.md): `input` (CSV text) on simd,
+# simd64 and ode, each exiting 0 with `summary` and the flagged line on stderr; simd64 equal to
+# ODE's dCollide byte for byte, and simd's output `want_simd` exactly.
+function(expect_kind_vector_mode kind input summary want_simd)
+  file(WRITE ${WORK}/in.csv "${input}")
+  foreach(backend simd simd64 ode)
+    execute_process(COMMAND ${COLLIDE} pairs --kind ${kind} --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out-${backend}.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+    expect_match("${err}" "${summary}")
+    expect_match("${err}" "collide pairs: flagged")
+  endforeach()
+  file(READ ${WORK}/out-simd64.csv got)
+  file(READ ${WORK}/out-ode.csv want)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "${kind}: simd64 differs from ode:\n--- got\n${got}--- want\n${want}")
+  endif()
+  file(READ ${WORK}/out-simd.csv got)
+  if(NOT got STREQUAL want_simd)
+    message(FATAL_ERROR "${kind}: simd contacts differ:\n--- got\n${got}--- want\n${want_simd}")
+  endif()
+endfunction()
+
 set(pairs "x1,y1,z1,r1,x2,y2,z2,r2\n0,0,0,1,0,0,0,2\n3,4,0,2,0,0,0,3\n0x1.8p+1,4,0,1,0,0,0,1\n")
 if(CHECK STREQUAL "pairs_simd" OR CHECK STREQUAL "pairs_ode")
   string(REPLACE "pairs_" "" backend ${CHECK})
@@ -48,25 +71,10 @@ if(CHECK STREQUAL "pairs_simd" OR CHECK STREQUAL "pairs_ode")
 elseif(CHECK STREQUAL "pairs_sphere_plane")
   # Sphere/plane vector mode (docs/pair-kinds.md): touching, sunk by half, a plane that ODE
   # normalizes, a negative radius, a NaN, a value beyond binary32, a radius that becomes zero in
-  # binary32, a zero normal (ODE makes it (1, 0, 0, 0)). simd64 equals ODE's dCollide byte for byte.
-  file(WRITE ${WORK}/in.csv "cx,cy,cz,r,nx,ny,nz,d\n0,0,1,1,0,0,1,0\n0.25,-3,0.5,1,0,0,1,0\n10,10,10,1,1,1,1,1\n0,0,5,-1,0,0,1,0\nnan,0,0,1,0,0,1,0\n1e300,0,0,1,0,0,1,0\n0,0,1e-50,1e-50,0,0,1,0\n1,2,3,1,0,0,0,5\n")
-  foreach(backend simd simd64 ode)
-    execute_process(COMMAND ${COLLIDE} pairs --kind sphere-plane --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out-${backend}.csv
-                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-    expect_rc(0)
-    expect_match("${err}" "8 sphere-plane pairs")
-    expect_match("${err}" "collide pairs: flagged")
-  endforeach()
-  file(READ ${WORK}/out-simd64.csv got)
-  file(READ ${WORK}/out-ode.csv want)
-  if(NOT got STREQUAL want)
-    message(FATAL_ERROR "simd64 differs from ode:\n--- got\n${got}--- want\n${want}")
-  endif()
-  file(READ ${WORK}/out-simd.csv got)
-  set(want "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n0,1,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x1p+0,0x0p+0,1\n1,1,0x1p-2,-0x1.8p+1,-0x1p-1,0x0p+0,0x0p+0,0x1p+0,0x1p-1,1\n2,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0\n3,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n4,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,8\n5,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,40\n6,1,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x1p+0,0x0p+0,33\n7,1,0x0p+0,0x1p+1,0x1.8p+1,0x1p+0,0x0p+0,0x0p+0,0x0p+0,1\n")
-  if(NOT got STREQUAL want)
-    message(FATAL_ERROR "simd sphere/plane contacts differ:\n--- got\n${got}--- want\n${want}")
-  endif()
+  # binary32, a zero normal (ODE makes it (1, 0, 0, 0)).
+  expect_kind_vector_mode(sphere-plane "cx,cy,cz,r,nx,ny,nz,d\n0,0,1,1,0,0,1,0\n0.25,-3,0.5,1,0,0,1,0\n10,10,10,1,1,1,1,1\n0,0,5,-1,0,0,1,0\nnan,0,0,1,0,0,1,0\n1e300,0,0,1,0,0,1,0\n0,0,1e-50,1e-50,0,0,1,0\n1,2,3,1,0,0,0,5\n"
+    "8 sphere-plane pairs"
+    "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n0,1,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x1p+0,0x0p+0,1\n1,1,0x1p-2,-0x1.8p+1,-0x1p-1,0x0p+0,0x0p+0,0x1p+0,0x1p-1,1\n2,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0\n3,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n4,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,8\n5,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,40\n6,1,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x1p+0,0x0p+0,33\n7,1,0x0p+0,0x1p+1,0x1.8p+1,0x1p+0,0x0p+0,0x0p+0,0x0p+0,1\n")
   # Backends without sphere/plane pairs are refused, naming the kind.
   foreach(args "--backend;model:fp32" "--afu;${REPO}/generated/default")
     execute_process(COMMAND ${COLLIDE} pairs --kind sphere-plane ${args} --in ${WORK}/in.csv --out ${WORK}/x.csv
@@ -77,26 +85,10 @@ elseif(CHECK STREQUAL "pairs_sphere_plane")
 elseif(CHECK STREQUAL "pairs_capsule_sphere")
   # Capsule/sphere vector mode (docs/pair-kinds.md): beside the middle, touching a cap, beyond
   # the other cap, centre on the axis (coincident), an axis ODE normalizes, a zero axis, a
-  # negative length, a NaN, a radius that becomes zero in binary32. simd64 equals ODE's
-  # dCollide byte for byte.
-  file(WRITE ${WORK}/in.csv "cx,cy,cz,ax,ay,az,lz,rc,sx,sy,sz,rs\n0,0,0,0,0,1,2,1,1.5,0,0,1\n0,0,0,0,0,1,2,1,0,0,3,1\n0,0,0,0,0,1,2,1,0.5,0,-2.5,1\n0,0,0,0,0,1,2,1,0,0,0.5,0.25\n1,1,1,1,1,1,4,0.5,2,1,1,0.75\n0,0,0,0,0,0,2,1,0,0,0,1\n0,0,0,0,0,1,-2,1,0,0,0,1\n0,0,0,0,0,1,2,1,nan,0,0,1\n0,0,0,0,0,1,2,1e-50,3,0,0,1\n")
-  foreach(backend simd simd64 ode)
-    execute_process(COMMAND ${COLLIDE} pairs --kind capsule-sphere --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out-${backend}.csv
-                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-    expect_rc(0)
-    expect_match("${err}" "9 capsule-sphere pairs, 5 contacts")
-    expect_match("${err}" "collide pairs: flagged")
-  endforeach()
-  file(READ ${WORK}/out-simd64.csv got)
-  file(READ ${WORK}/out-ode.csv want)
-  if(NOT got STREQUAL want)
-    message(FATAL_ERROR "simd64 differs from ode:\n--- got\n${got}--- want\n${want}")
-  endif()
-  file(READ ${WORK}/out-simd.csv got)
-  set(want "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n0,1,0x1.8p-1,0x0p+0,0x0p+0,-0x1p+0,0x0p+0,0x0p+0,0x1p-1,1\n1,1,0x0p+0,0x0p+0,0x1p+1,0x0p+0,0x0p+0,-0x1p+0,0x0p+0,1\n2,1,0x1p-2,0x0p+0,-0x1.cp+0,-0x1.43d136p-2,0x0p+0,0x1.e5b9dp-1,0x1.ace9fp-2,1\n3,1,0x0p+0,0x0p+0,0x1p-1,0x1p+0,0x0p+0,0x0p+0,0x1.4p+0,1\n4,1,0x1.9089ecp+0,0x1.37bb08p+0,0x1.37bb08p+0,-0x1.a20bdcp-1,0x1.a20bd2p-2,0x1.a20bd2p-2,0x1.bbe854p-2,1\n5,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n6,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n7,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,8\n8,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n")
-  if(NOT got STREQUAL want)
-    message(FATAL_ERROR "simd capsule/sphere contacts differ:\n--- got\n${got}--- want\n${want}")
-  endif()
+  # negative length, a NaN, a radius that becomes zero in binary32.
+  expect_kind_vector_mode(capsule-sphere "cx,cy,cz,ax,ay,az,lz,rc,sx,sy,sz,rs\n0,0,0,0,0,1,2,1,1.5,0,0,1\n0,0,0,0,0,1,2,1,0,0,3,1\n0,0,0,0,0,1,2,1,0.5,0,-2.5,1\n0,0,0,0,0,1,2,1,0,0,0.5,0.25\n1,1,1,1,1,1,4,0.5,2,1,1,0.75\n0,0,0,0,0,0,2,1,0,0,0,1\n0,0,0,0,0,1,-2,1,0,0,0,1\n0,0,0,0,0,1,2,1,nan,0,0,1\n0,0,0,0,0,1,2,1e-50,3,0,0,1\n"
+    "9 capsule-sphere pairs, 5 contacts"
+    "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n0,1,0x1.8p-1,0x0p+0,0x0p+0,-0x1p+0,0x0p+0,0x0p+0,0x1p-1,1\n1,1,0x0p+0,0x0p+0,0x1p+1,0x0p+0,0x0p+0,-0x1p+0,0x0p+0,1\n2,1,0x1p-2,0x0p+0,-0x1.cp+0,-0x1.43d136p-2,0x0p+0,0x1.e5b9dp-1,0x1.ace9fp-2,1\n3,1,0x0p+0,0x0p+0,0x1p-1,0x1p+0,0x0p+0,0x0p+0,0x1.4p+0,1\n4,1,0x1.9089ecp+0,0x1.37bb08p+0,0x1.37bb08p+0,-0x1.a20bdcp-1,0x1.a20bd2p-2,0x1.a20bd2p-2,0x1.bbe854p-2,1\n5,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n6,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n7,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,8\n8,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,32\n")
 elseif(CHECK STREQUAL "model_backend")
   # model:<preset>: an AFU preset's SCPU on the CPU. model:fp32 is binary32 with correctly
   # rounded roots, as simd: the same output byte for byte.
