@@ -3,20 +3,16 @@ package collide.pairs
 import scala.util.Random
 import collide.pairs.model.CapsuleSpherePair
 import collide.scpu.ScpuConfig
-import collide.scpu.model.ScpuModel
 
 /** Stimulus for the capsule/sphere unit and its vectors file: hard cases by name, random
   * capsules with spheres about them (a third grazing), and raw bit patterns of the format. */
-final class CapsuleSphereVectors(cfg: ScpuConfig) {
-  private val f = cfg.format
-  def b(v: Double): BigInt = ScpuModel.fromDouble(f, v)
+final class CapsuleSphereVectors(cfg: ScpuConfig) extends PairStimulus(cfg) {
   def pair(c: (Double, Double, Double), a: (Double, Double, Double), lz: Double, rc: Double,
            s: (Double, Double, Double), rs: Double): CapsuleSpherePair =
     CapsuleSpherePair(b(c._1), b(c._2), b(c._3), b(a._1), b(a._2), b(a._3), b(lz), b(rc), b(s._1), b(s._2), b(s._3), b(rs))
   private val z = (0.0, 0.0, 1.0)
   private val o = (0.0, 0.0, 0.0)
   private val k = 1 / math.sqrt(3.0)
-  private val biggest = ScpuModel.toDouble(f, f.maxFinite(false))
 
   /** Named hard cases (docs/pair-kinds.md lists them). */
   val hardCases: Seq[(String, CapsuleSpherePair)] = Seq(
@@ -39,11 +35,6 @@ final class CapsuleSphereVectors(cfg: ScpuConfig) {
     "an infinite sphere centre" -> pair(o, z, 2, 1, (Double.NegativeInfinity, 0, 0), 1)
   )
 
-  private def unit(rng: Random): (Double, Double, Double) = {
-    val v = Seq.fill(3)(rng.nextGaussian())
-    val l = math.sqrt(v.map(x => x * x).sum)
-    (v(0) / l, v(1) / l, v(2) / l)
-  }
   /** A capsule in a box of `scale`, and a sphere at a random place along its axis (ends and
     * beyond included), off the axis by about the sum of the radii (a third within 1e-6 of it). */
   def random(rng: Random, scale: Double = 10): CapsuleSpherePair = {

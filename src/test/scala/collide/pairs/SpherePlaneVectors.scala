@@ -1,21 +1,16 @@
 package collide.pairs
 
 import scala.util.Random
-import collide.fp.FloatFormat
 import collide.pairs.model.SpherePlanePair
 import collide.scpu.ScpuConfig
-import collide.scpu.model.ScpuModel
 
 /** Stimulus for the sphere/plane unit and its vectors file: hard cases by name, and random
   * pairs drawn as a scene would hold them (unit normals, as ODE keeps a plane) or as raw bit
   * patterns of the format (every special value and scale). */
-final class SpherePlaneVectors(cfg: ScpuConfig) {
-  private val f: FloatFormat = cfg.format
-  def b(v: Double): BigInt = ScpuModel.fromDouble(f, v)
+final class SpherePlaneVectors(cfg: ScpuConfig) extends PairStimulus(cfg) {
   def pair(c: (Double, Double, Double), r: Double, n: (Double, Double, Double), d: Double): SpherePlanePair =
     SpherePlanePair(b(c._1), b(c._2), b(c._3), b(r), b(n._1), b(n._2), b(n._3), b(d))
   private val s = 1 / math.sqrt(3.0)
-  private val biggest = ScpuModel.toDouble(f, f.maxFinite(false))
 
   /** Named hard cases (docs/pair-kinds.md lists them). */
   val hardCases: Seq[(String, SpherePlanePair)] = Seq(
@@ -40,11 +35,6 @@ final class SpherePlaneVectors(cfg: ScpuConfig) {
     "an infinite offset" -> pair((0, 0, 5), 1, (0, 0, 1), Double.NegativeInfinity)
   )
 
-  private def unit(rng: Random): (Double, Double, Double) = {
-    val v = Seq.fill(3)(rng.nextGaussian())
-    val l = math.sqrt(v.map(x => x * x).sum)
-    (v(0) / l, v(1) / l, v(2) / l)
-  }
   /** A sphere near a unit-normal plane in a box of `scale`: centre, radius, and the plane's
     * offset chosen so the depth spreads around zero (a third of them within a few ulps). */
   def random(rng: Random, scale: Double = 10): SpherePlanePair = {
