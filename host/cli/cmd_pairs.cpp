@@ -20,10 +20,9 @@
 
 namespace collide::cli {
 
-namespace {
 // "3 pairs: 2 non-finite input (8), 1 outside the host's range (32)": each problem flag with
 // the number of pairs carrying it (a pair may carry several). Empty when none is set.
-std::string flaggedSummary(const ContactSet& c) {
+std::string flaggedSummary(const std::vector<std::uint8_t>& flags) {
   const struct {
     std::uint32_t bit;
     const char* what;
@@ -32,20 +31,19 @@ std::string flaggedSummary(const ContactSet& c) {
                {contract::REC_HOST_RANGE, "outside the host's range or the link format"}};
   const std::uint32_t problems = contract::REC_NONFINITE | contract::REC_ARITH | contract::REC_HOST_RANGE;
   std::size_t any = 0;
-  for (auto f : c.flags) any += (f & problems) != 0;
+  for (auto f : flags) any += (f & problems) != 0;
   if (any == 0) return "";
   std::string s = std::to_string(any) + (any == 1 ? " pair:" : " pairs:");
   const char* sep = " ";
   for (const auto& k : kinds) {
     std::size_t n = 0;
-    for (auto f : c.flags) n += (f & k.bit) != 0;
+    for (auto f : flags) n += (f & k.bit) != 0;
     if (n == 0) continue;
     s += sep + std::to_string(n) + " " + k.what + " (" + std::to_string(k.bit) + ")";
     sep = ", ";
   }
   return s;
 }
-}  // namespace
 
 int runPairs(const PairsOptions& o) {
   if (o.kind != "sphere-sphere") return runKindPairs(o);
@@ -96,7 +94,7 @@ int runPairs(const PairsOptions& o) {
     }
     std::cerr << "\n";
     // Last, so that a flagged pair never passes without a word.
-    if (const std::string flagged = flaggedSummary(contacts); !flagged.empty())
+    if (const std::string flagged = flaggedSummary(contacts.flags); !flagged.empty())
       std::cerr << "collide pairs: flagged " << flagged << "\n";
     return 0;
   });

@@ -170,7 +170,9 @@ int runKindPairs(const PairsOptions& o) {
     ode::Library library;
     OdeGeoms geoms;
     const std::size_t rows = values.size() / n;
-    std::size_t hits = 0, flaggedPairs = 0, flagged[3] = {0, 0, 0};
+    std::size_t hits = 0;
+    std::vector<std::uint8_t> allFlags;
+    allFlags.reserve(rows);
     std::ostream& os = out.stream();
     os << "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n";
     const auto isSize = [&](std::size_t i) {
@@ -237,27 +239,14 @@ int runKindPairs(const PairsOptions& o) {
       for (double x : {c.pos[0], c.pos[1], c.pos[2], c.normal[0], c.normal[1], c.normal[2], c.depth})
         os << ',' << hexFloat(x, fmt);
       os << ',' << int{flags} << '\n';
-      flaggedPairs += (flags & (contract::REC_NONFINITE | contract::REC_ARITH | contract::REC_HOST_RANGE)) != 0;
-      flagged[0] += (flags & contract::REC_NONFINITE) != 0;
-      flagged[1] += (flags & contract::REC_ARITH) != 0;
-      flagged[2] += (flags & contract::REC_HOST_RANGE) != 0;
+      allFlags.push_back(flags);
     }
     out.commit();
     std::cerr << "collide pairs: " << rows << " " << o.kind << " pairs, " << hits << " contacts, backend " << o.backend
               << " (" << toString(fmt) << ")\n";
     // Last, so that a flagged pair never passes without a word (as for sphere pairs).
-    if (flaggedPairs > 0) {
-      std::cerr << "collide pairs: flagged " << flaggedPairs << (flaggedPairs == 1 ? " pair:" : " pairs:");
-      const char* names[3] = {"non-finite input (8)", "arithmetic overflow or invalid (16)",
-                              "outside the host's range or the link format (32)"};
-      const char* sep = " ";
-      for (int i = 0; i < 3; ++i) {
-        if (flagged[i] == 0) continue;
-        std::cerr << sep << flagged[i] << " " << names[i];
-        sep = ", ";
-      }
-      std::cerr << "\n";
-    }
+    if (const std::string flagged = flaggedSummary(allFlags); !flagged.empty())
+      std::cerr << "collide pairs: flagged " << flagged << "\n";
     return 0;
   });
 }

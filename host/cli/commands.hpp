@@ -2,6 +2,8 @@
 // The `collide` subcommands. Each returns the process exit code:
 // 0 ok, 1 error (message on stderr), 2 what this build cannot do: an AFU it lacks, world mode
 // on the AFU (command_errors.hpp maps them).
+#include <cstdint>
+#include <vector>
 #include <optional>
 #include <string>
 
@@ -69,6 +71,9 @@ struct InfoOptions {
 int runScene(const RunOptions& o);
 int runPairs(const PairsOptions& o);
 int runKindPairs(const PairsOptions& o);  // runPairs for the kinds beyond spheres
+// "3 pairs: 2 non-finite input (8), 1 outside the host's range (32)": the problem flags among
+// `flags` (contract::REC_*), each with its count; empty when none is set.
+std::string flaggedSummary(const std::vector<std::uint8_t>& flags);
 int runInfo(const InfoOptions& o);
 int runSpheres(const SpheresOptions& o);
 
