@@ -2,9 +2,11 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "batch/pair_kinds.hpp"
 #include "cli/commands.hpp"
 #include "collide/backend_factory.hpp"
 #include "link/link_presets.hpp"
@@ -115,7 +117,7 @@ int main(int argc, char** argv) {
                 "pair kind: sphere-sphere, sphere-plane (input cx,cy,cz,r,nx,ny,nz,d) or capsule-sphere (input "
                 "cx,cy,cz,ax,ay,az,lz,rc,sx,sy,sz,rs); the last two on the simd, simd64 and ode backends (docs/pair-kinds.md)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"sphere-sphere", "sphere-plane", "capsule-sphere"}));
+      ->check(CLI::IsMember(std::vector<std::string>(collide::kPairKinds.begin(), collide::kPairKinds.end())));
   p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2, or the --kind's columns), - for stdin")
       ->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
